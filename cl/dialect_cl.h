@@ -1,0 +1,87 @@
+/* OpenCL C binding of the kernel dialect (kernels/dialect.h): one work-item
+ * per pixel, so a "lane" is a scalar and a strip is one pixel.
+ *
+ * Prepended to the kernel descriptions when the program is embedded (see
+ * cmake/embed_kernels.cmake). Keep the semantics identical to
+ * simd/dialect_scalar.h (the oracle) and simd/dialect_simd.h. Contraction is
+ * off, as -ffp-contract=off is on the CPU side: a * b + c never fuses unless a
+ * description says pn_fma.
+ */
+#pragma OPENCL FP_CONTRACT OFF
+
+typedef float pn_float;
+typedef int pn_int;
+typedef uint pn_uint;
+typedef int pn_mask;
+
+#define PN_FN static inline
+#define PN_KERNEL kernel
+#define PN_GLOBAL global
+#define PN_LANES 1
+
+PN_FN float pn_min(float a, float b) { return a < b ? a : b; }
+PN_FN float pn_max(float a, float b) { return a > b ? a : b; }
+PN_FN float pn_clamp(float v, float lo, float hi) { return pn_min(pn_max(v, lo), hi); }
+PN_FN float pn_abs(float v) { return fabs(v); }
+PN_FN float pn_sqrt(float v) { return sqrt(v); }
+PN_FN float pn_floor(float v) { return floor(v); }
+PN_FN float pn_ceil(float v) { return ceil(v); }
+PN_FN float pn_fma(float a, float b, float c) { return fma(a, b, c); }
+PN_FN float pn_exp(float v) { return exp(v); }
+PN_FN float pn_log(float v) { return log(v); }
+PN_FN float pn_select(int m, float a, float b) { return m ? a : b; }
+PN_FN int pn_and(int a, int b) { return a && b; }
+PN_FN int pn_or(int a, int b) { return a || b; }
+PN_FN int pn_not(int a) { return !a; }
+PN_FN int pn_any(int m) { return m; }
+PN_FN int pn_all(int m) { return m; }
+
+PN_FN int pn_imin(int a, int b) { return a < b ? a : b; }
+PN_FN int pn_imax(int a, int b) { return a > b ? a : b; }
+PN_FN int pn_iclamp(int v, int lo, int hi) { return pn_imin(pn_imax(v, lo), hi); }
+PN_FN int pn_to_int(float v) { return (int)v; }
+PN_FN float pn_int_to_float(int v) { return (float)v; }
+PN_FN float pn_uint_to_float(uint v) { return (float)v; }
+PN_FN uint pn_float_to_uint(float v) { return (uint)(int)v; }
+PN_FN uint pn_ushr(uint v, int n) { return v >> n; }
+
+#define PN_PLANE(ptr, dims, c) ((ptr) + (size_t)(c) * (size_t)(dims).plane_pitch)
+
+PN_FN size_t pn_index(pn_dims d, int x, int y) { return (size_t)y * (size_t)d.pitch + (size_t)x; }
+
+PN_FN float pn_load(global const float* plane, pn_dims d, int x, int y) { return x < d.width ? plane[pn_index(d, x, y)] : 0.0f; }
+PN_FN void pn_store(global float* plane, pn_dims d, int x, int y, float v) { if (x < d.width) plane[pn_index(d, x, y)] = v; }
+PN_FN void pn_store_stream(global float* plane, pn_dims d, int x, int y, float v) { pn_store(plane, d, x, y, v); }
+PN_FN float pn_gather(global const float* ptr, int index) { return ptr[index]; }
+PN_FN float pn_fetch(global const float* plane, pn_dims d, int x, int y)
+{
+    return plane[pn_index(d, pn_iclamp(x, 0, d.width - 1), pn_iclamp(y, 0, d.height - 1))];
+}
+PN_FN uint pn_uload(global const uint* plane, pn_dims d, int x, int y) { return x < d.width ? plane[pn_index(d, x, y)] : 0u; }
+PN_FN void pn_ustore(global uint* plane, pn_dims d, int x, int y, uint v) { if (x < d.width) plane[pn_index(d, x, y)] = v; }
+PN_FN void pn_ustore_stream(global uint* plane, pn_dims d, int x, int y, uint v) { pn_ustore(plane, d, x, y, v); }
+PN_FN uint pn_ugather(global const uint* ptr, int index) { return ptr[index]; }
+
+#define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); ++x)
+PN_FN float pn_scan_add(float v) { return v; }
+PN_FN float pn_last(float v) { return v; }
+PN_FN uint pn_uscan_add(uint v) { return v; }
+PN_FN uint pn_ulast(uint v) { return v; }
+PN_FN float pn_last_value(float v) { return v; }
+PN_FN uint pn_ulast_value(uint v) { return v; }
+
+/* Per pixel: the global id is the pixel; rows may be launched in chunks, so
+ * the host passes the first row of the launch. */
+#define PN_PIXEL_ARGS int pn_row_offset
+#define PN_PIXEL_BEGIN(width, height)                         \
+    const int pn_x = (int)get_global_id(0);                   \
+    const int pn_y = (int)get_global_id(1) + pn_row_offset;   \
+    if (pn_x >= (width) || pn_y >= (height)) return;          \
+    const float pn_lane_x = (float)pn_x;                      \
+    const int pn_active = 1;                                  \
+    (void)pn_lane_x;                                          \
+    (void)pn_active
+#define PN_TASK_ARGS int pn_task_count
+#define PN_TASK_BEGIN(count)                                  \
+    const int pn_task = (int)get_global_id(0);                \
+    if (pn_task >= (count)) return

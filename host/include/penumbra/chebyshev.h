@@ -1,0 +1,35 @@
+// Chebyshev-bound shadow filtering over a moment table: VSM and VSSM.
+//
+// Receivers: a 3-channel image (u, v, z): light-space texture coordinates in
+// [0, 1] (clamped into the map) and light-space depth. Output: a 1-channel
+// image of visibility in [0, 1] on the receivers' grid.
+#pragma once
+
+#include "penumbra/context.h"
+#include "penumbra/image.h"
+#include "penumbra/moment_table.h"
+
+namespace penumbra {
+
+// Default variance floor, in depth^2: above the exact table's quantization of
+// z^2 (0.5 / 65535 = 7.6e-6 per texel) so that a flat window never reads a
+// rounding residue as a depth spread, small enough to keep contact shadows
+// sharp (a 16-bit depth step is 1.5e-5; its square is far below).
+inline constexpr float kDefaultMinVariance = 2e-5f;
+
+struct VsmOptions {
+    int radius = 2;                       // texels; window (2r+1)^2
+    float min_variance = kDefaultMinVariance;
+    float bleed = 0.0f;                   // light-bleeding reduction in [0, 1); 0 = off
+};
+
+struct VssmOptions {
+    float light_size = 0.02f;             // light width in texture units at the near plane (> 0)
+    float min_variance = kDefaultMinVariance;
+    float bleed = 0.0f;
+};
+
+Image vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options);
+Image vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options);
+
+}  // namespace penumbra

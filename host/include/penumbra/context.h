@@ -1,0 +1,62 @@
+// penumbra::Context — owns the backend every operation runs on.
+//
+// Backends: Simd (xsimd, the best ISA of this CPU, TBB across cores), OpenCL
+// (any OpenCL 1.2 device; PoCL on a CPU-only machine), Scalar (one lane, the
+// readable debug path). The rule for Auto, which users can rely on:
+//   1. PENUMBRA_BACKEND (auto | simd | opencl | scalar) overrides Auto.
+//   2. Auto takes a non-CPU OpenCL device (a GPU or accelerator) when one
+//      exists, because it is then faster than the CPU; otherwise Simd (an
+//      OpenCL CPU driver such as PoCL runs the same cores slower than Simd).
+//   3. If that OpenCL device fails to start, Auto falls back to Simd with one
+//      warning (see warnings()); an explicit OpenCL request that cannot be met
+//      throws Error(Unavailable).
+// A context is not thread-safe; use one per thread. The OpenCL program is built
+// once per context (PoCL compiles at run time: seconds, cached on disk).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+enum class Backend { Auto, Simd, OpenCL, Scalar };
+
+std::string to_string(Backend backend);
+// Parses auto|simd|opencl|scalar; throws Error(InvalidArgument) otherwise.
+Backend parse_backend(const std::string& name);
+
+struct ContextOptions {
+    Backend backend = Backend::Auto;
+    // SIMD only: force an ISA (sse4.2, avx2, avx512); empty = PENUMBRA_SIMD_ISA or the best.
+    std::string simd_isa;
+};
+
+namespace detail {
+class BackendImpl;
+}
+
+class Context {
+public:
+    explicit Context(ContextOptions options = {});
+    ~Context();
+    Context(Context&&) noexcept;
+    Context& operator=(Context&&) noexcept;
+
+    Backend backend() const;          // resolved: never Auto
+    std::string description() const; // e.g. "simd (avx512, 16 lanes)", "opencl (Portable Computing Language: cpu)"
+    std::string reason() const;       // why this backend was chosen
+    const std::vector<std::string>& warnings() const;
+    std::string isa() const;          // SIMD/Scalar: the ISA in use; OpenCL: empty
+    double program_build_seconds() const;  // OpenCL: time to build the program; else 0
+
+    detail::BackendImpl& impl();
+
+private:
+    std::unique_ptr<detail::BackendImpl> impl_;
+    Backend backend_ = Backend::Simd;
+    std::string reason_;
+    std::vector<std::string> warnings_;
+};
+
+}  // namespace penumbra

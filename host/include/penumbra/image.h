@@ -1,0 +1,85 @@
+// Planar float images with a padded row pitch.
+//
+// Layout (DESIGN.md, "Data"): one plane per channel, planes one after another;
+// each row starts on a 64-byte boundary (the row pitch is a multiple of 16
+// floats), so that a SIMD strip load never straddles a cache line more than it
+// must and a kernel never needs to read past a row's end: the padding is there
+// but kernels mask instead of relying on it. Pixel (x, y) of channel c is
+// plane(c)[y * pitch() + x].
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+inline constexpr std::size_t kAlignment = 64;        // bytes: one cache line, one AVX-512 register
+inline constexpr int kPitchQuantum = kAlignment / 4;  // 4-byte elements per alignment unit
+
+// Rounds a row length in 4-byte elements up to a whole number of cache lines.
+int padded_pitch(int width);
+
+// An owned, 64-byte aligned, zero-initialised block of bytes.
+class AlignedBuffer {
+public:
+    AlignedBuffer() = default;
+    explicit AlignedBuffer(std::size_t bytes);
+
+    std::byte* data() noexcept { return data_.get(); }
+    const std::byte* data() const noexcept { return data_.get(); }
+    std::size_t size() const noexcept { return size_; }
+
+private:
+    struct Free {
+        void operator()(std::byte* p) const noexcept;
+    };
+    std::unique_ptr<std::byte, Free> data_;
+    std::size_t size_ = 0;
+};
+
+class Image {
+public:
+    Image() = default;
+    // Zero-filled image. Throws Error(InvalidArgument) for negative sizes or a
+    // channel count outside [1, 16].
+    Image(int width, int height, int channels);
+
+    int width() const noexcept { return width_; }
+    int height() const noexcept { return height_; }
+    int channels() const noexcept { return channels_; }
+    bool empty() const noexcept { return width_ == 0 || height_ == 0; }
+    // Elements (not bytes) between the starts of two rows, and of two planes.
+    int pitch() const noexcept { return pitch_; }
+    std::size_t plane_pitch() const noexcept { return plane_pitch_; }
+
+    float* plane(int c) noexcept;
+    const float* plane(int c) const noexcept;
+    float* row(int c, int y) noexcept { return plane(c) + std::size_t(y) * pitch_; }
+    const float* row(int c, int y) const noexcept { return plane(c) + std::size_t(y) * pitch_; }
+    float& at(int c, int x, int y) noexcept { return row(c, y)[x]; }
+    float at(int c, int x, int y) const noexcept { return row(c, y)[x]; }
+
+    void fill(int c, float value);
+
+private:
+    int width_ = 0, height_ = 0, channels_ = 0, pitch_ = 0;
+    std::size_t plane_pitch_ = 0;
+    AlignedBuffer storage_;
+};
+
+// Where the first non-finite value of an image is, for error messages.
+struct NonFinite {
+    bool found = false;
+    int channel = 0, x = 0, y = 0;
+    float value = 0;
+};
+NonFinite find_non_finite(const Image& image);
+
+// Throws Error(InvalidData) naming `what` (e.g. "shadow map") and the first
+// offending pixel if any value is NaN or infinite.
+void require_finite(const Image& image, const std::string& operation, const std::string& what);
+
+}  // namespace penumbra

@@ -1,0 +1,33 @@
+// The interface every backend implements: one method per host operation.
+// Inputs are validated before these are called (host/src/*.cpp); a backend
+// trusts its arguments.
+#pragma once
+
+#include <string>
+
+#include "kernels/params.h"
+#include "penumbra/image.h"
+#include "penumbra/moment_table.h"
+
+namespace penumbra::detail {
+
+enum class ChebyshevMethod { Vsm, Vssm };
+
+class BackendImpl {
+public:
+    virtual ~BackendImpl() = default;
+    virtual std::string description() const = 0;
+    virtual std::string isa() const { return {}; }
+    virtual double program_build_seconds() const { return 0.0; }
+
+    // Fills `table` (allocated, zeroed) from `depth`.
+    virtual void build_moment_table(const Image& depth, MomentTable& table) = 0;
+    // `params` has every field set but the image geometries' pointers.
+    virtual void chebyshev(ChebyshevMethod method, const MomentTable& table, const Image& receivers,
+                           const ChebyshevParams& params, Image& out) = 0;
+};
+
+pn_dims dims_of(const Image& image);
+pn_dims dims_of(const MomentTable& table);
+
+}  // namespace penumbra::detail

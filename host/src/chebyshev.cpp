@@ -1,0 +1,91 @@
+// Host operations vsm() and vssm(): validate, fill ChebyshevParams, dispatch.
+#include "penumbra/chebyshev.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "backend.h"
+#include "penumbra/error.h"
+
+namespace penumbra {
+namespace {
+
+void check_receivers(const std::string& op, const MomentTable& table, const Image& receivers)
+{
+    require(!table.empty(), op, "the moment table is empty; build it with build_moment_table()");
+    require(!receivers.empty(), op, "the receivers image is empty (0 pixels)");
+    require(receivers.channels() == 3, op,
+            "receivers must have 3 channels (u, v, z), got " + std::to_string(receivers.channels()));
+    require_finite(receivers, op, "the receivers image");
+}
+
+void check_filter(const std::string& op, float min_variance, float bleed)
+{
+    require(std::isfinite(min_variance) && min_variance >= 0.0f, op,
+            "min-variance must be a finite value >= 0 (got " + std::to_string(min_variance) + ")");
+    require(std::isfinite(bleed) && bleed >= 0.0f && bleed < 1.0f, op,
+            "bleed must be in [0, 1) (got " + std::to_string(bleed) + ")");
+}
+
+ChebyshevParams base_params(const MomentTable& table, const Image& receivers, const Image& out,
+                            float min_variance, float bleed)
+{
+    ChebyshevParams p{};
+    p.table = detail::dims_of(table);
+    p.receivers = detail::dims_of(receivers);
+    p.out = detail::dims_of(out);
+    p.min_variance = min_variance;
+    p.bleed = bleed;
+    p.exact_scale = 1.0f / 65535.0f;
+    return p;
+}
+
+}  // namespace
+
+Image vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options)
+{
+    const std::string op = "vsm";
+    check_receivers(op, table, receivers);
+    check_filter(op, options.min_variance, options.bleed);
+    require(options.radius >= 0, op, "radius must be >= 0 (got " + std::to_string(options.radius) + ")");
+    if (table.precision() == Precision::Exact)
+        require(options.radius <= kExactMaxRadius, op,
+                "radius " + std::to_string(options.radius) + " exceeds " + std::to_string(kExactMaxRadius) +
+                    ", the largest window (255x255 texels) whose sums an exact table keeps exact; use "
+                    "--precision float or a smaller radius");
+    Image out(receivers.width(), receivers.height(), 1);
+    ChebyshevParams p = base_params(table, receivers, out, options.min_variance, options.bleed);
+    p.radius = options.radius;
+    context.impl().chebyshev(detail::ChebyshevMethod::Vsm, table, receivers, p, out);
+    return out;
+}
+
+Image vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options)
+{
+    const std::string op = "vssm";
+    check_receivers(op, table, receivers);
+    check_filter(op, options.min_variance, options.bleed);
+    require(std::isfinite(options.light_size) && options.light_size > 0.0f, op,
+            "light-size must be > 0 (got " + std::to_string(options.light_size) + ")");
+    // The filter window is clamped to max_radius; an exact table needs the
+    // window plus its one-texel interpolation slivers within 255 texels.
+    const int map_extent = std::max(table.width(), table.height());
+    const int max_radius = table.precision() == Precision::Exact ? kExactMaxRadius - 1 : map_extent;
+    if (table.precision() == Precision::Exact) {
+        const float search_half = options.light_size * 0.5f * float(map_extent);
+        require(search_half <= float(max_radius), op,
+                "light-size " + std::to_string(options.light_size) + " needs a blocker search of " +
+                    std::to_string(int(std::ceil(2 * search_half))) +
+                    " texels, more than an exact table keeps exact (253); use --precision float or a "
+                    "smaller light");
+    }
+    Image out(receivers.width(), receivers.height(), 1);
+    ChebyshevParams p = base_params(table, receivers, out, options.min_variance, options.bleed);
+    p.light_size = options.light_size;
+    p.max_radius = max_radius;
+    context.impl().chebyshev(detail::ChebyshevMethod::Vssm, table, receivers, p, out);
+    return out;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,126 @@
+#include "penumbra/context.h"
+
+#include <cstdlib>
+#include <string>
+
+#include "backend.h"
+#include "penumbra/config.h"
+#include "penumbra/error.h"
+#include "simd/cpu_backend.h"
+#if PENUMBRA_OPENCL
+#include "cl/opencl_backend.h"
+#endif
+
+namespace penumbra {
+
+std::string to_string(Backend backend)
+{
+    switch (backend) {
+    case Backend::Auto: return "auto";
+    case Backend::Simd: return "simd";
+    case Backend::OpenCL: return "opencl";
+    case Backend::Scalar: return "scalar";
+    }
+    return "unknown";
+}
+
+Backend parse_backend(const std::string& name)
+{
+    if (name == "auto") return Backend::Auto;
+    if (name == "simd") return Backend::Simd;
+    if (name == "opencl") return Backend::OpenCL;
+    if (name == "scalar") return Backend::Scalar;
+    throw Error(ErrorCategory::InvalidArgument, "backend",
+                "'" + name + "' is not a backend; valid: auto, simd, opencl, scalar");
+}
+
+namespace {
+
+std::unique_ptr<detail::BackendImpl> make_simd(const ContextOptions& options)
+{
+    const std::string_view isa = options.simd_isa.empty() ? cpu::chosen_isa() : std::string_view(options.simd_isa);
+    return cpu::make_cpu_backend(cpu::kernels_for(isa));
+}
+
+std::unique_ptr<detail::BackendImpl> make_opencl(bool non_cpu_only)
+{
+#if PENUMBRA_OPENCL
+    return cl_backend::make_opencl_backend(non_cpu_only);
+#else
+    (void)non_cpu_only;
+    throw Error(ErrorCategory::Unavailable, "opencl",
+                "this build of penumbra has no OpenCL backend (configure with -DPENUMBRA_OPENCL=ON)");
+#endif
+}
+
+bool has_non_cpu_opencl_device()
+{
+#if PENUMBRA_OPENCL
+    return cl_backend::has_non_cpu_device();
+#else
+    return false;
+#endif
+}
+
+}  // namespace
+
+Context::Context(ContextOptions options)
+{
+    Backend requested = options.backend;
+    std::string source = "requested by the caller";
+    if (requested == Backend::Auto) {
+        if (const char* env = std::getenv("PENUMBRA_BACKEND"); env && *env) {
+            requested = parse_backend(env);
+            source = "PENUMBRA_BACKEND=" + std::string(env);
+        }
+    }
+    switch (requested) {
+    case Backend::Simd:
+        impl_ = make_simd(options);
+        backend_ = Backend::Simd;
+        reason_ = source;
+        break;
+    case Backend::Scalar:
+        impl_ = cpu::make_cpu_backend(cpu::kernels_scalar);
+        backend_ = Backend::Scalar;
+        reason_ = source;
+        break;
+    case Backend::OpenCL:
+        impl_ = make_opencl(false);
+        backend_ = Backend::OpenCL;
+        reason_ = source;
+        break;
+    case Backend::Auto:
+        if (has_non_cpu_opencl_device()) {
+            try {
+                impl_ = make_opencl(true);
+                backend_ = Backend::OpenCL;
+                reason_ = "auto: a non-CPU OpenCL device is present";
+                break;
+            } catch (const Error& e) {
+                warnings_.push_back(std::string("OpenCL device failed to start, using SIMD instead: ") + e.what());
+            }
+        }
+        impl_ = make_simd(options);
+        backend_ = Backend::Simd;
+        if (reason_.empty())
+            reason_ = warnings_.empty() ? "auto: no non-CPU OpenCL device, so the SIMD backend (faster than an "
+                                          "OpenCL CPU driver on the same cores)"
+                                        : "auto: fell back to SIMD after the OpenCL device failed";
+        break;
+    }
+}
+
+Context::~Context() = default;
+Context::Context(Context&&) noexcept = default;
+Context& Context::operator=(Context&&) noexcept = default;
+
+Backend Context::backend() const { return backend_; }
+std::string Context::description() const { return impl_->description(); }
+std::string Context::reason() const { return reason_; }
+const std::vector<std::string>& Context::warnings() const { return warnings_; }
+std::string Context::isa() const { return impl_->isa(); }
+double Context::program_build_seconds() const { return impl_->program_build_seconds(); }
+detail::BackendImpl& Context::impl() { return *impl_; }
+
+}  // namespace penumbra

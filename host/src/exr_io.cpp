@@ -1,0 +1,388 @@
+// OpenEXR reading and writing, and the atomic replace that write_png shares.
+#include "penumbra/exr_io.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfTestFile.h>
+
+#include <Imath/ImathBox.h>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <climits>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <system_error>
+#include <utility>
+
+#include "penumbra/error.h"
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::string_view kReadAdvice = "; the file may be truncated or corrupt, re-create it";
+constexpr std::string_view kWriteAdvice = "; check free disk space and write permission";
+
+std::string quoted(const std::string& text) { return "'" + text + "'"; }
+
+std::string errno_text(int code) { return std::generic_category().message(code); }
+
+[[noreturn]] void throw_io(std::string_view operation, const std::string& message)
+{
+    throw Error(ErrorCategory::Io, operation, message);
+}
+
+std::string joined(const std::vector<std::string>& names)
+{
+    if (names.empty()) return "(none)";
+    std::string text;
+    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + quoted(name);
+    return text;
+}
+
+// OpenEXR's messages end in a period; ours continue after them with advice.
+std::string without_final_period(std::string text)
+{
+    if (!text.empty() && text.back() == '.') text.pop_back();
+    return text;
+}
+
+// Runs `body`, turning whatever OpenEXR throws (Iex::BaseExc, or a standard
+// exception from the library beneath it) into an Error(Io) that names the file,
+// so that callers only ever see penumbra::Error. Our own Errors pass unchanged.
+template <class Body>
+auto translating_exr_exceptions(std::string_view operation, const std::string& path, std::string_view advice,
+                                Body&& body)
+{
+    try {
+        return body();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw_io(operation, "OpenEXR failed on " + quoted(path) + ": " + without_final_period(e.what()) +
+                                std::string(advice));
+    }
+}
+
+// ---------------------------------------------------------------- arguments
+
+void require_distinct_names(const std::vector<std::string>& channels, std::string_view operation)
+{
+    require(!channels.empty(), operation, "no channel names given; name at least one channel");
+    std::set<std::string> seen;
+    for (const std::string& name : channels) {
+        require(!name.empty(), operation, "a channel name is empty; EXR channels need a name");
+        require(seen.insert(name).second, operation,
+                "channel " + quoted(name) + " is named twice; name each channel once");
+    }
+}
+
+// ---------------------------------------------------------------- reading
+
+// What the file system can tell is checked before OpenEXR sees the file, so that
+// a wrong path or a file of another format gets a message that says just that.
+void require_openable_exr(const std::string& path, std::string_view operation)
+{
+    std::error_code error;
+    const fs::file_status status = fs::status(path, error);
+    if (status.type() == fs::file_type::not_found)
+        throw_io(operation, quoted(path) + " does not exist; check the path");
+    if (error) throw_io(operation, quoted(path) + " cannot be accessed (" + error.message() + ")");
+    if (fs::is_directory(status)) throw_io(operation, quoted(path) + " is a directory, not an OpenEXR file");
+
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) {
+        const int error_number = errno;
+        throw_io(operation, quoted(path) + " cannot be opened for reading (" + errno_text(error_number) +
+                                "); check its permissions");
+    }
+    ::close(fd);
+    if (!Imf::isOpenExrFile(path.c_str()))
+        throw_io(operation, quoted(path) + " is not an OpenEXR file (it lacks the EXR magic number); "
+                                           "convert it to .exr first");
+}
+
+std::unique_ptr<Imf::InputFile> open_exr(const std::string& path, std::string_view operation)
+{
+    return translating_exr_exceptions(operation, path, kReadAdvice, [&] {
+        require_openable_exr(path, operation);
+        return std::make_unique<Imf::InputFile>(path.c_str());
+    });
+}
+
+std::vector<std::string> channel_names(const Imf::Header& header)
+{
+    std::vector<std::string> names;
+    for (auto channel = header.channels().begin(); channel != header.channels().end(); ++channel)
+        names.emplace_back(channel.name());
+    return names;
+}
+
+void require_channels_present(const Imf::Header& header, const std::vector<std::string>& channels,
+                              const std::string& path, std::string_view operation)
+{
+    for (const std::string& name : channels) {
+        const Imf::Channel* channel = header.channels().findChannel(name);
+        if (!channel)
+            throw_io(operation, quoted(path) + " has no channel " + quoted(name) + "; its channels are " +
+                                    joined(channel_names(header)));
+        // Reading a subsampled channel into a full-resolution plane would need
+        // an upsampling policy; refusing is clearer than inventing one.
+        if (channel->xSampling != 1 || channel->ySampling != 1)
+            throw_io(operation,
+                     "channel " + quoted(name) + " of " + quoted(path) + " is subsampled (" +
+                         std::to_string(channel->xSampling) + "x" + std::to_string(channel->ySampling) +
+                         "); only full-resolution channels can be read, re-export it unsubsampled");
+    }
+}
+
+struct Extent {
+    int width = 0, height = 0;
+};
+
+// 64-bit arithmetic: a window spanning INT_MIN..INT_MAX is 2^32 pixels wide.
+Extent data_window_extent(const Imath::Box2i& window, const std::string& path, std::string_view operation)
+{
+    const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+    const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+    std::ostringstream corners;
+    corners << '(' << window.min.x << ", " << window.min.y << ")..(" << window.max.x << ", " << window.max.y
+            << ')';
+    if (width <= 0 || height <= 0)
+        throw_io(operation, quoted(path) + " has an empty data window " + corners.str() +
+                                ": it holds no pixels; re-export it with at least one pixel");
+    if (width > INT_MAX || height > INT_MAX)
+        throw_io(operation, quoted(path) + " has a data window too large to read " + corners.str());
+    return {int(width), int(height)};
+}
+
+// ---------------------------------------------------------------- both ways
+
+// One FLOAT slice per plane. Slice::Make subtracts the data window origin from
+// the plane pointer (in 64-bit arithmetic), because OpenEXR addresses pixels by
+// their absolute coordinates: pixel (min.x, min.y) lands at plane(c)[0].
+// Slice::Make takes a const pointer for both directions; when reading, `image`
+// refers to a non-const Image that OpenEXR fills.
+Imf::FrameBuffer frame_buffer_over(const Image& image, const std::vector<std::string>& channels,
+                                   const Imath::Box2i& window)
+{
+    Imf::FrameBuffer frame;
+    const std::size_t row_bytes = std::size_t(image.pitch()) * sizeof(float);
+    for (std::size_t c = 0; c < channels.size(); ++c)
+        frame.insert(channels[c],
+                     Imf::Slice::Make(Imf::FLOAT, image.plane(int(c)), window, sizeof(float), row_bytes));
+    return frame;
+}
+
+// ---------------------------------------------------------------- writing
+
+// An OpenEXR output stream over a stdio file that remembers its first failure.
+// OutputFile's destructor writes the table of scanline offsets and swallows any
+// exception doing so; without this record a full disk at that moment would
+// leave a corrupt file that looks written.
+class CheckedOutputStream : public Imf::OStream {
+public:
+    explicit CheckedOutputStream(const std::string& path)
+        : Imf::OStream(path.c_str()), file_(std::fopen(path.c_str(), "wb"))
+    {
+        if (!file_) fail();
+    }
+    ~CheckedOutputStream() override
+    {
+        if (file_) std::fclose(file_);
+    }
+
+    void write(const char bytes[], int count) override
+    {
+        if (std::fwrite(bytes, 1, std::size_t(count), file()) != std::size_t(count)) fail();
+    }
+    // Must not throw: OutputFile's destructor calls it outside its try block.
+    // A failure is recorded, and the next write() or close() reports it.
+    std::uint64_t tellp() override
+    {
+        const off_t position = error_ ? -1 : ::ftello(file_);
+        if (position < 0 && !error_) error_ = errno ? errno : EIO;
+        return position < 0 ? 0 : std::uint64_t(position);
+    }
+    void seekp(std::uint64_t position) override
+    {
+        if (::fseeko(file(), off_t(position), SEEK_SET) != 0) fail();
+    }
+
+    // Closes the file; throws unless every write, and the close, succeeded.
+    void close()
+    {
+        if (file_ && std::fclose(std::exchange(file_, nullptr)) != 0 && !error_) error_ = errno;
+        if (error_)
+            throw std::system_error(error_, std::generic_category(), "writing " + std::string(fileName()));
+    }
+
+private:
+    std::FILE* file()
+    {
+        if (error_) throw std::system_error(error_, std::generic_category(), "writing after an error");
+        return file_;
+    }
+    [[noreturn]] void fail()
+    {
+        if (!error_) error_ = errno ? errno : EIO;
+        throw std::system_error(error_, std::generic_category(), "writing " + std::string(fileName()));
+    }
+
+    std::FILE* file_ = nullptr;
+    int error_ = 0;
+};
+
+Imf::Header float_header(const Image& image, const std::vector<std::string>& channels)
+{
+    const Imath::Box2i window({0, 0}, {image.width() - 1, image.height() - 1});
+    Imf::Header header(window, window, 1.0f, Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y, Imf::ZIP_COMPRESSION);
+    for (const std::string& name : channels) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    return header;
+}
+
+void write_exr_pixels(const std::string& temporary_path, const Image& image,
+                      const std::vector<std::string>& channels)
+{
+    const Imf::Header header = float_header(image, channels);
+    CheckedOutputStream stream(temporary_path);
+    {
+        Imf::OutputFile file(stream, header);
+        file.setFrameBuffer(frame_buffer_over(image, channels, header.dataWindow()));
+        file.writePixels(image.height());
+    }  // the destructor writes the scanline offset table
+    stream.close();
+}
+
+// ---------------------------------------------------------------- atomic files
+
+// Creates the temporary file exclusively (O_EXCL), so that two writers never
+// share one; mode 0666 lets the umask decide permissions as for any new file.
+std::string create_temporary_beside(const fs::path& target, std::string_view operation)
+{
+    static std::atomic<unsigned> counter{0};
+    const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        // Hidden, and named after the target, so a stray one (after a crash) says what it was.
+        std::ostringstream name;
+        name << '.' << target.filename().string() << ".tmp-" << ::getpid() << '-' << counter++;
+        const std::string candidate = (directory / name.str()).string();
+        const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0) {
+            ::close(fd);
+            return candidate;
+        }
+        const int error = errno;
+        if (error == EEXIST) continue;
+        if (error == ENOENT && !fs::is_directory(directory))
+            throw_io(operation, "cannot write " + quoted(target.string()) + ": directory " +
+                                    quoted(directory.string()) + " does not exist; create it first");
+        throw_io(operation, "cannot create a file in " + quoted(directory.string()) + " to write " +
+                                quoted(target.string()) + " (" + errno_text(error) +
+                                "); check that it is a directory you may write to");
+    }
+    throw_io(operation, "cannot find a free temporary name beside " + quoted(target.string()) +
+                            "; remove stale '.*.tmp-*' files from its directory");
+}
+
+// Data written but not yet on disk could be lost in a crash after the rename,
+// leaving an empty target; fsync first. Any descriptor of the file will do.
+void flush_to_disk(const std::string& path)
+{
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0 || ::fsync(fd) != 0) {
+        const int error = errno;
+        if (fd >= 0) ::close(fd);
+        throw std::system_error(error, std::generic_category(), "flushing " + path + " to disk");
+    }
+    ::close(fd);
+}
+
+}  // namespace
+
+namespace detail {
+
+void write_file_atomically(const std::string& path, std::string_view operation,
+                           const std::function<void(const std::string& temporary_path)>& write_temporary)
+{
+    const std::string temporary = create_temporary_beside(fs::path(path), operation);
+    try {
+        write_temporary(temporary);
+        flush_to_disk(temporary);
+        // rename(2) replaces the target in one step: readers see the old file or
+        // the new one, never a mix. (A symbolic link as target is replaced, not followed.)
+        if (::rename(temporary.c_str(), path.c_str()) != 0) {
+            const int error_number = errno;
+            throw_io(operation,
+                     "cannot replace " + quoted(path) + " (" + errno_text(error_number) +
+                         "); if a directory of that name is in the way, move it or choose another path");
+        }
+    } catch (const Error&) {
+        ::unlink(temporary.c_str());
+        throw;
+    } catch (const std::exception& e) {
+        ::unlink(temporary.c_str());
+        throw_io(operation, "cannot write " + quoted(path) + ": " + e.what() + std::string(kWriteAdvice));
+    } catch (...) {
+        ::unlink(temporary.c_str());
+        throw;
+    }
+}
+
+}  // namespace detail
+
+std::vector<std::string> exr_channel_names(const std::string& path)
+{
+    const auto file = open_exr(path, "exr_channel_names");
+    return channel_names(file->header());
+}
+
+Image read_exr(const std::string& path, const std::vector<std::string>& channels)
+{
+    constexpr std::string_view operation = "read_exr";
+    require_distinct_names(channels, operation);
+    const auto file = open_exr(path, operation);
+    require_channels_present(file->header(), channels, path, operation);
+    const Imath::Box2i window = file->header().dataWindow();
+    const Extent extent = data_window_extent(window, path, operation);
+
+    Image image(extent.width, extent.height, int(channels.size()));
+    translating_exr_exceptions(operation, path, kReadAdvice, [&] {
+        file->setFrameBuffer(frame_buffer_over(image, channels, window));
+        file->readPixels(window.min.y, window.max.y);
+    });
+    return image;
+}
+
+void write_exr(const std::string& path, const Image& image, const std::vector<std::string>& channels)
+{
+    constexpr std::string_view operation = "write_exr";
+    require_distinct_names(channels, operation);
+    require(int(channels.size()) == image.channels(), operation,
+            "the image has " + std::to_string(image.channels()) + " channels but " +
+                std::to_string(channels.size()) + (channels.size() == 1 ? " name was" : " names were") +
+                " given for " + quoted(path) + "; give one name per channel");
+    require(!image.empty(), operation,
+            "the image for " + quoted(path) + " is empty (" + std::to_string(image.width()) + "x" +
+                std::to_string(image.height()) + "); an EXR file needs at least one pixel");
+
+    detail::write_file_atomically(path, operation, [&](const std::string& temporary) {
+        translating_exr_exceptions(operation, path, kWriteAdvice,
+                                   [&] { write_exr_pixels(temporary, image, channels); });
+    });
+}
+
+}  // namespace penumbra

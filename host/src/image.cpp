@@ -1,0 +1,83 @@
+#include "penumbra/image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+
+#include "penumbra/error.h"
+
+namespace penumbra {
+
+int padded_pitch(int width)
+{
+    // One element beyond the width is always kept: the summed-area tables use
+    // the last padding element of a row as their zero column (see moment_table.h).
+    return (width / kPitchQuantum + 1) * kPitchQuantum;
+}
+
+void AlignedBuffer::Free::operator()(std::byte* p) const noexcept { std::free(p); }
+
+AlignedBuffer::AlignedBuffer(std::size_t bytes) : size_(bytes)
+{
+    if (bytes == 0) return;
+    const std::size_t rounded = (bytes + kAlignment - 1) / kAlignment * kAlignment;
+    auto* p = static_cast<std::byte*>(std::aligned_alloc(kAlignment, rounded));
+    if (!p) throw std::bad_alloc();
+    std::memset(p, 0, rounded);
+    data_.reset(p);
+}
+
+Image::Image(int width, int height, int channels)
+{
+    require(width >= 0 && height >= 0, "Image",
+            "width and height must be non-negative (got " + std::to_string(width) + "x" +
+                std::to_string(height) + ")");
+    require(channels >= 1 && channels <= 16, "Image",
+            "channel count must be in [1, 16] (got " + std::to_string(channels) + ")");
+    width_ = width;
+    height_ = height;
+    channels_ = channels;
+    pitch_ = padded_pitch(width);
+    plane_pitch_ = std::size_t(pitch_) * std::size_t(height);
+    storage_ = AlignedBuffer(plane_pitch_ * std::size_t(channels) * sizeof(float));
+}
+
+float* Image::plane(int c) noexcept
+{
+    return reinterpret_cast<float*>(storage_.data()) + plane_pitch_ * std::size_t(c);
+}
+
+const float* Image::plane(int c) const noexcept
+{
+    return reinterpret_cast<const float*>(storage_.data()) + plane_pitch_ * std::size_t(c);
+}
+
+void Image::fill(int c, float value)
+{
+    for (int y = 0; y < height_; ++y) std::fill_n(row(c, y), width_, value);
+}
+
+NonFinite find_non_finite(const Image& image)
+{
+    for (int c = 0; c < image.channels(); ++c)
+        for (int y = 0; y < image.height(); ++y) {
+            const float* r = image.row(c, y);
+            for (int x = 0; x < image.width(); ++x)
+                if (!std::isfinite(r[x])) return {true, c, x, y, r[x]};
+        }
+    return {};
+}
+
+void require_finite(const Image& image, const std::string& operation, const std::string& what)
+{
+    const NonFinite bad = find_non_finite(image);
+    if (!bad.found) return;
+    throw Error(ErrorCategory::InvalidData, operation,
+                what + " has a non-finite value (" + std::to_string(bad.value) + ") in channel " +
+                    std::to_string(bad.channel) + " at pixel (" + std::to_string(bad.x) + ", " +
+                    std::to_string(bad.y) + "); replace NaN/infinite values before filtering");
+}
+
+}  // namespace penumbra

@@ -1,0 +1,131 @@
+#include "penumbra/moment_table.h"
+
+#include <cmath>
+#include <string>
+
+#include "backend.h"
+#include "penumbra/error.h"
+
+namespace penumbra {
+namespace {
+
+// Elements before the origin: give the corner query of row -1, column -1
+// (element -1) a zero to read, and put the origin 4 KiB into the storage, so
+// that OpenCL can address it as a sub-buffer on any device (sub-buffer offsets
+// must be multiples of CL_DEVICE_MEM_BASE_ADDR_ALIGN, at most 4 KiB in practice).
+constexpr std::size_t kLead = 1024;
+
+// Both precisions store 4-byte elements (float or uint32).
+constexpr std::size_t kElementSize = 4;
+
+void check_rectangle(const MomentTable& t, int k, int x0, int x1, int y0, int y1)
+{
+    require(!t.empty(), "MomentTable::box_sum", "the table is empty");
+    require(k >= 1 && k <= t.moments(), "MomentTable::box_sum",
+            "moment " + std::to_string(k) + " is not in [1, " + std::to_string(t.moments()) + "]");
+    require(0 <= x0 && x0 < x1 && x1 <= t.width() && 0 <= y0 && y0 < y1 && y1 <= t.height(),
+            "MomentTable::box_sum", "rectangle [" + std::to_string(x0) + ", " + std::to_string(x1) + ") x [" +
+                                        std::to_string(y0) + ", " + std::to_string(y1) +
+                                        ") is empty or outside the map");
+}
+
+}  // namespace
+
+MomentTable::MomentTable(int width, int height, int moments, Precision precision)
+    : width_(width), height_(height), pitch_(padded_pitch(width)),
+      plane_pitch_(std::size_t(padded_pitch(width)) * std::size_t(height + 1)), moments_(moments),
+      precision_(precision)
+{
+    require(width > 0 && height > 0, "MomentTable", "the map is empty");
+    require(moments == 2 || moments == 4, "MomentTable",
+            "moments must be 2 or 4 (got " + std::to_string(moments) + ")");
+    storage_ = AlignedBuffer(storage_elements() * kElementSize);
+}
+
+std::size_t MomentTable::storage_elements() const noexcept { return kLead + plane_pitch_ * std::size_t(moments_); }
+
+std::size_t MomentTable::origin_offset_bytes() const noexcept { return kLead * kElementSize; }
+
+float* MomentTable::float_origin() noexcept { return reinterpret_cast<float*>(storage_.data()) + kLead; }
+const float* MomentTable::float_origin() const noexcept
+{
+    return reinterpret_cast<const float*>(storage_.data()) + kLead;
+}
+std::uint32_t* MomentTable::exact_origin() noexcept { return reinterpret_cast<std::uint32_t*>(storage_.data()) + kLead; }
+const std::uint32_t* MomentTable::exact_origin() const noexcept
+{
+    return reinterpret_cast<const std::uint32_t*>(storage_.data()) + kLead;
+}
+
+std::uint32_t MomentTable::exact_box_sum(int k, int x0, int x1, int y0, int y1) const
+{
+    check_rectangle(*this, k, x0, x1, y0, y1);
+    require(precision_ == Precision::Exact, "MomentTable::exact_box_sum", "the table is not exact");
+    const std::uint32_t* plane = exact_origin() + plane_pitch_ * std::size_t(k - 1);
+    auto corner = [&](int x, int y) { return plane[std::ptrdiff_t(y) * pitch_ + x - 1]; };
+    return (corner(x1, y1) - corner(x0, y1)) - (corner(x1, y0) - corner(x0, y0));
+}
+
+double MomentTable::box_sum(int k, int x0, int x1, int y0, int y1) const
+{
+    check_rectangle(*this, k, x0, x1, y0, y1);
+    if (precision_ == Precision::Exact) {
+        // Same decoding as sat_exact_moment_scale() in kernels/moment_table.h.
+        double scale = 1.0 / 65535.0;
+        for (int i = 1; i < k; ++i) scale *= 65536.0 / 65535.0;
+        return double(exact_box_sum(k, x0, x1, y0, y1)) * scale;
+    }
+    const float* plane = float_origin() + plane_pitch_ * std::size_t(k - 1);
+    auto corner = [&](int x, int y) { return double(plane[std::ptrdiff_t(y) * pitch_ + x - 1]); };
+    return (corner(x1, y1) - corner(x0, y1)) - (corner(x1, y0) - corner(x0, y0));
+}
+
+static void check_depth_map(const Image& depth)
+{
+    const std::string op = "build_moment_table";
+    require(!depth.empty(), op, "the shadow map is empty (0 pixels)");
+    require(depth.channels() == 1, op,
+            "the shadow map must have one channel (depth), got " + std::to_string(depth.channels()));
+    require_finite(depth, op, "the shadow map");
+    for (int y = 0; y < depth.height(); ++y)
+        for (int x = 0; x < depth.width(); ++x) {
+            const float z = depth.at(0, x, y);
+            if (z < 0.0f || z > 1.0f)
+                throw Error(ErrorCategory::InvalidData, op,
+                            "shadow-map depth " + std::to_string(z) + " at (" + std::to_string(x) + ", " +
+                                std::to_string(y) + ") is outside [0, 1]; store linear light depth normalised "
+                                                    "to [0, 1]");
+        }
+}
+
+MomentTable build_moment_table(Context& context, const Image& depth, int moments, Precision precision)
+{
+    check_depth_map(depth);
+    MomentTable table(depth.width(), depth.height(), moments, precision);
+    context.impl().build_moment_table(depth, table);
+    return table;
+}
+
+std::string to_string(Precision precision) { return precision == Precision::Exact ? "exact" : "float"; }
+
+Precision parse_precision(const std::string& name)
+{
+    if (name == "exact") return Precision::Exact;
+    if (name == "float") return Precision::Float;
+    throw Error(ErrorCategory::InvalidArgument, "precision", "'" + name + "' is not exact or float");
+}
+
+namespace detail {
+
+pn_dims dims_of(const Image& image)
+{
+    return {image.width(), image.height(), image.pitch(), int(image.plane_pitch())};
+}
+
+pn_dims dims_of(const MomentTable& table)
+{
+    return {table.width(), table.height(), table.pitch(), int(table.plane_pitch())};
+}
+
+}  // namespace detail
+}  // namespace penumbra

@@ -1,0 +1,82 @@
+/* The penumbra kernel dialect: the contract every binding fulfils.
+ *
+ * A kernel description (a .h file in kernels/) is written in the common subset
+ * of OpenCL C 1.2 and C++20, using only the vocabulary below. Three bindings
+ * define it: cl/dialect_cl.h (OpenCL C, one work-item per pixel),
+ * simd/dialect_simd.h (xsimd, one pixel per lane, compiled once per ISA) and
+ * simd/dialect_scalar.h (plain C++, one lane: the readable oracle). A
+ * description never names a lane count, an ISA, xsimd or OpenCL; tests grep
+ * for it (tests/dialect_purity_test.cpp).
+ *
+ * Types
+ *   pn_float, pn_int, pn_uint   per-pixel (per-lane) float, int32, uint32
+ *   pn_mask                     per-pixel condition, from comparing pn_float
+ *   float, int                  uniform values: parameters, loop counters, offsets
+ *   uint                        32-bit unsigned scalar (storage element of exact tables)
+ *   A uniform converts to a lane value implicitly (pn_float x = 0.0f).
+ *   Unsigned arithmetic wraps modulo 2^32 in every binding.
+ *
+ * Functions and qualifiers
+ *   PN_FN          before every function of a description
+ *   PN_KERNEL      before an entry point (an OpenCL `kernel`)
+ *   PN_GLOBAL      before a pointer into an image or buffer
+ *
+ * Arithmetic and math (float lanes; `pn_i...` for pn_int, `pn_u...` for pn_uint)
+ *   + - * / and comparisons as usual; pn_min pn_max pn_clamp pn_abs pn_sqrt
+ *   pn_floor pn_ceil pn_fma (the only fused operation: contraction is off
+ *   everywhere else) pn_exp pn_log
+ *   pn_select(mask, if_true, if_false) instead of a branch on a lane value
+ *   pn_and pn_or pn_not on masks; pn_any(mask), pn_all(mask) give a uniform
+ *   answer, for loops whose trip count differs per lane.
+ *   pn_to_int(f) truncates; pn_int_to_float; pn_uint_to_float (exact rounding
+ *   over the whole uint32 range); pn_float_to_uint(f) for f in [0, 2^31);
+ *   pn_ushr(u, n) logical shift right by a uniform count.
+ *
+ * Memory (images are planes described by a pn_dims, see kernels/params.h)
+ *   PN_PLANE(ptr, dims, c)          pointer to plane c
+ *   pn_load(plane, dims, x, y)      the strip of lanes starting at uniform (x, y);
+ *                                   lanes at or past dims.width read 0
+ *   pn_store(plane, dims, x, y, v)  the same strip; lanes past the width are not
+ *                                   written (nothing is written past a row's end)
+ *   pn_store_stream(...)            pn_store with a hint that the data will not be
+ *                                   read again soon (non-temporal on SIMD)
+ *   pn_fetch(plane, dims, x, y)     per-lane coordinates, clamp-to-edge: the one
+ *                                   boundary helper
+ *   pn_gather(ptr, index)           per-lane element index; the caller guarantees
+ *                                   it is in bounds (every lane, active or not)
+ *   pn_uload pn_ustore pn_ustore_stream pn_ugather  the same for uint data
+ *
+ * Row scans (for kernels that walk a row strip by strip)
+ *   PN_FOR_STRIPS(x, begin, end)    for (x = begin; x < end; x += lane count)
+ *   pn_scan_add(v)                  inclusive prefix sum across the lanes of a strip
+ *   pn_last(v)                      every lane gets the value of the last lane
+ *   pn_last_value(v)                the last lane's value as a uniform float
+ *   pn_uscan_add, pn_ulast, pn_ulast_value   the same, wrapping, for pn_uint
+ *
+ * Entry shapes (the bindings expand them)
+ *   Per pixel: PN_KERNEL void name(<buffers>, const Params p, PN_PIXEL_ARGS)
+ *              { PN_PIXEL_BEGIN(width, height); ... }
+ *     defines int pn_x (first pixel of the strip), int pn_y (its row),
+ *     pn_float pn_lane_x (each lane's x) and pn_mask pn_active (lanes inside
+ *     the image). Loads and stores at (pn_x, pn_y) are the lanes' own pixels.
+ *   Per task:  PN_KERNEL void name(<buffers>, const Params p, PN_TASK_ARGS)
+ *              { PN_TASK_BEGIN(count); ... }   defines int pn_task in [0, count).
+ *
+ * Helpers below are written in the dialect itself and so exist in every binding.
+ */
+#ifndef PENUMBRA_DIALECT_H
+#define PENUMBRA_DIALECT_H
+
+/* Linear step: 0 at or below lo, 1 at or above hi, linear between. Used for
+ * light-bleeding reduction (Lauritzen, GPU Gems 3 ch. 8). Requires lo < hi. */
+PN_FN pn_float pn_linstep(float lo, float hi, pn_float v)
+{
+    return pn_clamp((v - lo) / (hi - lo), 0.0f, 1.0f);
+}
+
+PN_FN pn_float pn_saturate(pn_float v)
+{
+    return pn_clamp(v, 0.0f, 1.0f);
+}
+
+#endif

@@ -1,0 +1,19 @@
+/* The registry of kernel entry points: one X-macro list that drives the
+ * OpenCL kernel objects (cl/opencl_backend.cpp), the CPU function tables
+ * (simd/cpu_kernels.cpp) and a test that every entry exists on every backend.
+ * Add an entry here when a description gains a PN_KERNEL.
+ */
+#ifndef PENUMBRA_REGISTRY_H
+#define PENUMBRA_REGISTRY_H
+
+#define PN_KERNEL_REGISTRY(X) \
+    X(sat_bands_float)        \
+    X(sat_bands_exact)        \
+    X(sat_join_bands_float)   \
+    X(sat_join_bands_exact)   \
+    X(vsm_float)              \
+    X(vsm_exact)              \
+    X(vssm_float)             \
+    X(vssm_exact)
+
+#endif

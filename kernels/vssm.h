@@ -1,0 +1,86 @@
+/* Variance soft shadow maps (Yang, Dong, Chen, Feng, Bao, Peng, EGSR 2010).
+ *
+ * Per receiver (u, v, z), with light_size L the light's width in texture
+ * units at the near plane:
+ *  1. Blocker search: over a window of width L (half-width L W / 2 texels)
+ *     centred at (u, v), the Chebyshev bound p = P(depth >= z) is the lit
+ *     fraction; assuming the non-blockers lie at z, mean = p z + (1 - p) z_occ,
+ *     so the average blocker depth is z_occ = (mean - p z) / (1 - p).
+ *     p -> 1 (1 - p < 1e-4): no blocker, fully lit. z_occ <= 0 (blockers at
+ *     or behind the light plane, an estimate the bound can produce): clamped to
+ *     1e-4 z, the widest penumbra, itself clamped to the table's largest window.
+ *  2. Penumbra width w = L (z - z_occ) / z_occ in texture units (PCSS,
+ *     Fernando 2005), a filter of half-width max(0.5, w W / 2) texels,
+ *     fractional, by interpolating the table (kernels/moment_table.h).
+ *  3. The Chebyshev bound over that window, with the variance floor and the
+ *     light-bleeding reduction. Output in [0, 1].
+ * Windows are centred at the continuous texel position (u W, v H), so the
+ * estimate varies smoothly with (u, v).
+ */
+#ifndef PENUMBRA_VSSM_H
+#define PENUMBRA_VSSM_H
+
+#define PN_VSSM_NO_BLOCKER 1e-4f   /* 1 - p below this: no blocker */
+#define PN_VSSM_MIN_OCCLUDER 1e-4f /* z_occ floor, as a fraction of z */
+
+/* Filter half-width in texels for a receiver at z with blockers at z_occ. */
+PN_FN pn_float vssm_filter_half_width(const ChebyshevParams p, pn_float z, pn_float z_occ, float texels)
+{
+    const pn_float occluder = pn_max(z_occ, z * PN_VSSM_MIN_OCCLUDER);
+    const pn_float w = p.light_size * (z - occluder) / occluder;
+    return pn_clamp(w * (0.5f * texels), 0.5f, (float)p.max_radius + 0.5f);
+}
+
+/* Step 1 from the search window's moments: the lit fraction's complement and
+ * the blocker depth; `lit` marks receivers with no blocker. */
+PN_FN pn_float vssm_blocker_depth(DepthMoments search, pn_float z, float min_variance, pn_mask* lit)
+{
+    const pn_float p = chebyshev_upper_bound(search, z, min_variance);
+    const pn_float blocked = 1.0f - p;
+    *lit = blocked < PN_VSSM_NO_BLOCKER;
+    const pn_float safe_blocked = pn_max(blocked, PN_VSSM_NO_BLOCKER);
+    return (search.mean - p * z) / safe_blocked;
+}
+
+PN_FN FractionalWindow vssm_search_window(const ChebyshevParams p, Receiver r)
+{
+    const float w = (float)p.table.width, h = (float)p.table.height;
+    const float half_x = p.light_size * 0.5f * w > 0.5f ? p.light_size * 0.5f * w : 0.5f;
+    const float half_y = p.light_size * 0.5f * h > 0.5f ? p.light_size * 0.5f * h : 0.5f;
+    return clip_window(p.table, r.u * w, r.v * h, half_x, half_y);
+}
+
+PN_FN FractionalWindow vssm_filter_window(const ChebyshevParams p, Receiver r, pn_float z_occ)
+{
+    const float w = (float)p.table.width, h = (float)p.table.height;
+    return clip_window(p.table, r.u * w, r.v * h, vssm_filter_half_width(p, r.z, z_occ, w),
+                       vssm_filter_half_width(p, r.z, z_occ, h));
+}
+
+PN_KERNEL void vssm_float(PN_GLOBAL const float* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
+                          const ChebyshevParams p, PN_PIXEL_ARGS)
+{
+    PN_PIXEL_BEGIN(p.out.width, p.out.height);
+    const Receiver r = load_receiver(receivers, p.receivers, pn_x, pn_y);
+    pn_mask lit;
+    const DepthMoments search = fractional_moments_float(table, p.table, vssm_search_window(p, r));
+    const pn_float z_occ = vssm_blocker_depth(search, r.z, p.min_variance, &lit);
+    const DepthMoments filter = fractional_moments_float(table, p.table, vssm_filter_window(p, r, z_occ));
+    const pn_float visibility = chebyshev_visibility(filter, r.z, p.min_variance, p.bleed);
+    pn_store(out, p.out, pn_x, pn_y, pn_select(lit, 1.0f, visibility));
+}
+
+PN_KERNEL void vssm_exact(PN_GLOBAL const uint* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
+                          const ChebyshevParams p, PN_PIXEL_ARGS)
+{
+    PN_PIXEL_BEGIN(p.out.width, p.out.height);
+    const Receiver r = load_receiver(receivers, p.receivers, pn_x, pn_y);
+    pn_mask lit;
+    const DepthMoments search = fractional_moments_exact(table, p.table, vssm_search_window(p, r));
+    const pn_float z_occ = vssm_blocker_depth(search, r.z, p.min_variance, &lit);
+    const DepthMoments filter = fractional_moments_exact(table, p.table, vssm_filter_window(p, r, z_occ));
+    const pn_float visibility = chebyshev_visibility(filter, r.z, p.min_variance, p.bleed);
+    pn_store(out, p.out, pn_x, pn_y, pn_select(lit, 1.0f, visibility));
+}
+
+#endif

@@ -1,0 +1,85 @@
+// The kernel descriptions compiled for one instruction set.
+//
+// CMake compiles this file once per ISA (cmake/penumbra_kernels.cmake) with
+// PN_ISA_<name> defined and that ISA's -m flags; each copy puts the
+// descriptions in its own namespace and exports one CpuKernels table.
+#include <immintrin.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+#include "kernels/params.h"
+#include "simd/cpu_kernels.h"
+
+#if defined(PN_ISA_scalar)
+#define PN_ISA_NAMESPACE scalar
+#define PN_ISA_LABEL "scalar"
+#define PN_TABLE_NAME kernels_scalar
+#else
+#include <xsimd/xsimd.hpp>
+#if defined(PN_ISA_sse4_2)
+#define PN_ARCH xsimd::sse4_2
+#define PN_ISA_NAMESPACE sse4_2
+#define PN_ISA_LABEL "sse4.2"
+#define PN_TABLE_NAME kernels_sse4_2
+#elif defined(PN_ISA_avx2)
+#define PN_ARCH xsimd::fma3<xsimd::avx2>
+#define PN_ISA_NAMESPACE avx2
+#define PN_ISA_LABEL "avx2"
+#define PN_TABLE_NAME kernels_avx2
+#elif defined(PN_ISA_avx512)
+#define PN_ARCH xsimd::avx512bw
+#define PN_ISA_NAMESPACE avx512
+#define PN_ISA_LABEL "avx512"
+#define PN_TABLE_NAME kernels_avx512
+#else
+#error "define one of PN_ISA_scalar, PN_ISA_sse4_2, PN_ISA_avx2, PN_ISA_avx512"
+#endif
+#endif
+
+namespace penumbra::cpu::PN_ISA_NAMESPACE {
+#if defined(PN_ISA_scalar)
+#include "simd/dialect_scalar.h"
+#else
+#include "simd/dialect_simd.h"
+#endif
+#include "penumbra_kernel_includes.h"
+
+// Streaming stores are weakly ordered: fence them before the block is
+// reported done, so that whichever thread reads the table sees them.
+static void sat_block_float_fenced(const float* depth, float* table, float* carry, float* columns, int column_row,
+                                   SatParams p, int x0, int x1, int y0, int y1)
+{
+    sat_block_float(depth, table, carry, columns, column_row, p, x0, x1, y0, y1);
+    _mm_sfence();
+}
+
+static void sat_block_exact_fenced(const float* depth, u32* table, u32* carry, u32* columns, int column_row,
+                                   SatParams p, int x0, int x1, int y0, int y1)
+{
+    sat_block_exact(depth, table, carry, columns, column_row, p, x0, x1, y0, y1);
+    _mm_sfence();
+}
+}  // namespace penumbra::cpu::PN_ISA_NAMESPACE
+
+namespace penumbra::cpu {
+namespace isa = PN_ISA_NAMESPACE;
+extern const CpuKernels PN_TABLE_NAME;
+const CpuKernels PN_TABLE_NAME = {
+    PN_ISA_LABEL,
+    isa::kLanes,
+    &isa::sat_block_float_fenced,
+    &isa::sat_block_exact_fenced,
+    &isa::sat_bands_float,
+    &isa::sat_bands_exact,
+    &isa::sat_join_bands_float,
+    &isa::sat_join_bands_exact,
+    &isa::vsm_float,
+    &isa::vsm_exact,
+    &isa::vssm_float,
+    &isa::vssm_exact,
+};
+}  // namespace penumbra::cpu

@@ -1,0 +1,51 @@
+// The CPU function tables: the kernel descriptions compiled once per ISA
+// (simd/cpu_kernels.cpp), each table holding the same entry points.
+//
+// Entries are the descriptions' own functions. Pixel kernels take the strip's
+// first pixel (x, y) last; the schedule (simd/cpu_backend.cpp) walks strips of
+// `lanes` pixels. Task kernels take their task index last.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "kernels/params.h"
+
+namespace penumbra::cpu {
+
+using u32 = std::uint32_t;
+
+struct CpuKernels {
+    const char* isa;  // as `penumbra info` prints it: scalar, sse4.2, avx2, avx512
+    int lanes;        // pixels per strip
+
+    // The wavefront schedule's block (not an entry point of the registry).
+    void (*sat_block_float)(const float*, float*, float*, float*, int, SatParams, int, int, int, int);
+    void (*sat_block_exact)(const float*, u32*, u32*, u32*, int, SatParams, int, int, int, int);
+
+    // Entry points, in the order of kernels/registry.h.
+    void (*sat_bands_float)(const float*, float*, float*, float*, SatParams, int task);
+    void (*sat_bands_exact)(const float*, u32*, u32*, u32*, SatParams, int task);
+    void (*sat_join_bands_float)(float*, const float*, SatParams, int x, int y);
+    void (*sat_join_bands_exact)(u32*, const u32*, SatParams, int x, int y);
+    void (*vsm_float)(const float*, const float*, float*, ChebyshevParams, int x, int y);
+    void (*vsm_exact)(const u32*, const float*, float*, ChebyshevParams, int x, int y);
+    void (*vssm_float)(const float*, const float*, float*, ChebyshevParams, int x, int y);
+    void (*vssm_exact)(const u32*, const float*, float*, ChebyshevParams, int x, int y);
+};
+
+extern const CpuKernels kernels_scalar;
+extern const CpuKernels kernels_sse4_2;
+extern const CpuKernels kernels_avx2;
+extern const CpuKernels kernels_avx512;
+
+// ISAs this CPU can run, best last (never includes "scalar").
+std::vector<std::string_view> supported_isas();
+// The table for an ISA name ("scalar", "sse4.2", "avx2", "avx512"); throws
+// Error(Unavailable) for an unknown name or one this CPU cannot run.
+const CpuKernels& kernels_for(std::string_view isa);
+// The ISA the SIMD backend uses: PENUMBRA_SIMD_ISA if set (checked), else the best.
+std::string_view chosen_isa();
+
+}  // namespace penumbra::cpu

@@ -1,0 +1,82 @@
+// Scalar binding of the kernel dialect (kernels/dialect.h): one lane, plain C++.
+//
+// The readable oracle of the dialect and the debug path: every operation is the
+// obvious one. Included inside the namespace penumbra::cpu::scalar by
+// simd/cpu_kernels.cpp, after <cmath>, <cstdint> and <cstring>.
+// Keep the semantics identical to simd/dialect_simd.h and cl/dialect_cl.h.
+
+using pn_float = float;
+using pn_int = std::int32_t;
+using pn_uint = std::uint32_t;
+using pn_mask = bool;
+using uint = std::uint32_t;
+
+#define PN_FN static inline
+#define PN_KERNEL static inline
+#define PN_GLOBAL
+#define PN_LANES 1
+
+inline constexpr int kLanes = 1;
+
+PN_FN float pn_min(float a, float b) { return a < b ? a : b; }
+PN_FN float pn_max(float a, float b) { return a > b ? a : b; }
+PN_FN float pn_clamp(float v, float lo, float hi) { return pn_min(pn_max(v, lo), hi); }
+PN_FN float pn_abs(float v) { return std::fabs(v); }
+PN_FN float pn_sqrt(float v) { return std::sqrt(v); }
+PN_FN float pn_floor(float v) { return std::floor(v); }
+PN_FN float pn_ceil(float v) { return std::ceil(v); }
+PN_FN float pn_fma(float a, float b, float c) { return std::fma(a, b, c); }
+PN_FN float pn_exp(float v) { return std::exp(v); }
+PN_FN float pn_log(float v) { return std::log(v); }
+PN_FN float pn_select(bool m, float a, float b) { return m ? a : b; }
+PN_FN bool pn_and(bool a, bool b) { return a && b; }
+PN_FN bool pn_or(bool a, bool b) { return a || b; }
+PN_FN bool pn_not(bool a) { return !a; }
+PN_FN bool pn_any(bool m) { return m; }
+PN_FN bool pn_all(bool m) { return m; }
+
+PN_FN std::int32_t pn_imin(std::int32_t a, std::int32_t b) { return a < b ? a : b; }
+PN_FN std::int32_t pn_imax(std::int32_t a, std::int32_t b) { return a > b ? a : b; }
+PN_FN std::int32_t pn_iclamp(std::int32_t v, std::int32_t lo, std::int32_t hi) { return pn_imin(pn_imax(v, lo), hi); }
+PN_FN std::int32_t pn_to_int(float v) { return static_cast<std::int32_t>(v); }
+PN_FN float pn_int_to_float(std::int32_t v) { return static_cast<float>(v); }
+PN_FN float pn_uint_to_float(std::uint32_t v) { return static_cast<float>(v); }
+PN_FN std::uint32_t pn_float_to_uint(float v) { return static_cast<std::uint32_t>(static_cast<std::int32_t>(v)); }
+PN_FN std::uint32_t pn_ushr(std::uint32_t v, int n) { return v >> n; }
+
+#define PN_PLANE(ptr, dims, c) ((ptr) + (std::size_t)(c) * (std::size_t)(dims).plane_pitch)
+
+PN_FN std::size_t pn_index(pn_dims d, int x, int y) { return std::size_t(y) * std::size_t(d.pitch) + std::size_t(x); }
+
+PN_FN float pn_load(const float* plane, pn_dims d, int x, int y) { return x < d.width ? plane[pn_index(d, x, y)] : 0.0f; }
+PN_FN void pn_store(float* plane, pn_dims d, int x, int y, float v) { if (x < d.width) plane[pn_index(d, x, y)] = v; }
+PN_FN void pn_store_stream(float* plane, pn_dims d, int x, int y, float v) { pn_store(plane, d, x, y, v); }
+PN_FN float pn_gather(const float* ptr, std::int32_t index) { return ptr[index]; }
+PN_FN float pn_fetch(const float* plane, pn_dims d, std::int32_t x, std::int32_t y)
+{
+    return plane[pn_index(d, pn_iclamp(x, 0, d.width - 1), pn_iclamp(y, 0, d.height - 1))];
+}
+
+PN_FN std::uint32_t pn_uload(const std::uint32_t* plane, pn_dims d, int x, int y) { return x < d.width ? plane[pn_index(d, x, y)] : 0u; }
+PN_FN void pn_ustore(std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t v) { if (x < d.width) plane[pn_index(d, x, y)] = v; }
+PN_FN void pn_ustore_stream(std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t v) { pn_ustore(plane, d, x, y, v); }
+PN_FN std::uint32_t pn_ugather(const std::uint32_t* ptr, std::int32_t index) { return ptr[index]; }
+
+#define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); ++x)
+PN_FN float pn_scan_add(float v) { return v; }
+PN_FN float pn_last(float v) { return v; }
+PN_FN std::uint32_t pn_uscan_add(std::uint32_t v) { return v; }
+PN_FN std::uint32_t pn_ulast(std::uint32_t v) { return v; }
+PN_FN float pn_last_value(float v) { return v; }
+PN_FN std::uint32_t pn_ulast_value(std::uint32_t v) { return v; }
+
+#define PN_PIXEL_ARGS int pn_strip_x, int pn_row_y
+#define PN_PIXEL_BEGIN(width, height)        \
+    const int pn_x = pn_strip_x;              \
+    const int pn_y = pn_row_y;                \
+    const float pn_lane_x = float(pn_x);      \
+    const bool pn_active = pn_x < (width);    \
+    (void)pn_lane_x;                          \
+    (void)pn_active
+#define PN_TASK_ARGS int pn_task_index
+#define PN_TASK_BEGIN(count) const int pn_task = pn_task_index

@@ -1,0 +1,189 @@
+// xsimd binding of the kernel dialect (kernels/dialect.h): one pixel per lane.
+//
+// Included inside namespace penumbra::cpu::<isa> by simd/cpu_kernels.cpp with
+// PN_ARCH naming the xsimd architecture (xsimd::sse4_2, xsimd::fma3<xsimd::avx2>,
+// xsimd::avx512bw). Keep the semantics identical to simd/dialect_scalar.h (the
+// oracle) and cl/dialect_cl.h. Tails: a strip that reaches past an image's
+// width is loaded through a zeroed stack buffer and stored through one, so
+// nothing is read or written past a row's end.
+
+using pn_float = xsimd::batch<float, PN_ARCH>;
+using pn_int = xsimd::batch<std::int32_t, PN_ARCH>;
+using pn_uint = xsimd::batch<std::uint32_t, PN_ARCH>;
+using pn_mask = xsimd::batch_bool<float, PN_ARCH>;
+using uint = std::uint32_t;
+
+#define PN_FN static inline
+#define PN_KERNEL static inline
+#define PN_GLOBAL
+
+inline constexpr int kLanes = int(pn_float::size);
+#define PN_LANES kLanes
+
+PN_FN pn_float pn_min(pn_float a, pn_float b) { return xsimd::min(a, b); }
+PN_FN pn_float pn_max(pn_float a, pn_float b) { return xsimd::max(a, b); }
+PN_FN pn_float pn_clamp(pn_float v, pn_float lo, pn_float hi) { return pn_min(pn_max(v, lo), hi); }
+PN_FN pn_float pn_abs(pn_float v) { return xsimd::abs(v); }
+PN_FN pn_float pn_sqrt(pn_float v) { return xsimd::sqrt(v); }
+PN_FN pn_float pn_floor(pn_float v) { return xsimd::floor(v); }
+PN_FN pn_float pn_ceil(pn_float v) { return xsimd::ceil(v); }
+PN_FN pn_float pn_fma(pn_float a, pn_float b, pn_float c) { return xsimd::fma(a, b, c); }
+PN_FN pn_float pn_exp(pn_float v) { return xsimd::exp(v); }
+PN_FN pn_float pn_log(pn_float v) { return xsimd::log(v); }
+PN_FN pn_float pn_select(pn_mask m, pn_float a, pn_float b) { return xsimd::select(m, a, b); }
+PN_FN pn_mask pn_and(pn_mask a, pn_mask b) { return a & b; }
+PN_FN pn_mask pn_or(pn_mask a, pn_mask b) { return a | b; }
+PN_FN pn_mask pn_not(pn_mask a) { return !a; }
+PN_FN bool pn_any(pn_mask m) { return xsimd::any(m); }
+PN_FN bool pn_all(pn_mask m) { return xsimd::all(m); }
+
+PN_FN pn_int pn_imin(pn_int a, pn_int b) { return xsimd::min(a, b); }
+PN_FN pn_int pn_imax(pn_int a, pn_int b) { return xsimd::max(a, b); }
+PN_FN pn_int pn_iclamp(pn_int v, pn_int lo, pn_int hi) { return pn_imin(pn_imax(v, lo), hi); }
+PN_FN pn_int pn_to_int(pn_float v) { return xsimd::batch_cast<std::int32_t>(v); }
+PN_FN pn_float pn_int_to_float(pn_int v) { return xsimd::batch_cast<float>(v); }
+PN_FN pn_uint pn_ushr(pn_uint v, int n) { return v >> n; }
+// uint32 -> float with one rounding, like a scalar conversion: both halves are
+// exact in float, so only the final addition rounds.
+PN_FN pn_float pn_uint_to_float(pn_uint v)
+{
+    const pn_int high = xsimd::bitwise_cast<pn_int>(v >> 16);
+    const pn_int low = xsimd::bitwise_cast<pn_int>(v & pn_uint(0xFFFFu));
+    return pn_int_to_float(high) * 65536.0f + pn_int_to_float(low);
+}
+PN_FN pn_uint pn_float_to_uint(pn_float v) { return xsimd::bitwise_cast<pn_uint>(pn_to_int(v)); }
+
+#define PN_PLANE(ptr, dims, c) ((ptr) + (std::size_t)(c) * (std::size_t)(dims).plane_pitch)
+
+template <class T>
+using pn_batch_of = xsimd::batch<T, PN_ARCH>;
+
+template <class T>
+PN_FN pn_batch_of<T> pn_load_strip(const T* plane, pn_dims d, int x, int y)
+{
+    const T* p = plane + std::size_t(y) * std::size_t(d.pitch) + std::size_t(x);
+    const int valid = d.width - x;
+    if (valid >= kLanes) return pn_batch_of<T>::load_unaligned(p);
+    alignas(64) T tail[kLanes] = {};
+    std::memcpy(tail, p, sizeof(T) * std::size_t(valid > 0 ? valid : 0));
+    return pn_batch_of<T>::load_aligned(tail);
+}
+
+// Non-temporal store of a whole aligned strip: the summed-area table is
+// written once and not read back soon, so it should not evict the inputs.
+template <class T>
+PN_FN void pn_stream_store(T* p, pn_batch_of<T> v)
+{
+#if defined(PN_ISA_avx512)
+    if constexpr (std::is_same_v<T, float>) _mm512_stream_ps(p, v);
+    else _mm512_stream_si512(reinterpret_cast<__m512i*>(p), v);
+#elif defined(PN_ISA_avx2)
+    if constexpr (std::is_same_v<T, float>) _mm256_stream_ps(p, v);
+    else _mm256_stream_si256(reinterpret_cast<__m256i*>(p), v);
+#else
+    if constexpr (std::is_same_v<T, float>) _mm_stream_ps(p, v);
+    else _mm_stream_si128(reinterpret_cast<__m128i*>(p), v);
+#endif
+}
+
+template <class T>
+PN_FN void pn_store_strip(T* plane, pn_dims d, int x, int y, pn_batch_of<T> v, bool stream)
+{
+    T* p = plane + std::size_t(y) * std::size_t(d.pitch) + std::size_t(x);
+    const int valid = d.width - x;
+    if (valid >= kLanes) {
+        if (stream && reinterpret_cast<std::uintptr_t>(p) % (sizeof(T) * kLanes) == 0)
+            pn_stream_store(p, v);
+        else
+            v.store_unaligned(p);
+        return;
+    }
+    alignas(64) T tail[kLanes];
+    v.store_aligned(tail);
+    std::memcpy(p, tail, sizeof(T) * std::size_t(valid > 0 ? valid : 0));
+}
+
+PN_FN pn_float pn_load(const float* plane, pn_dims d, int x, int y) { return pn_load_strip(plane, d, x, y); }
+PN_FN void pn_store(float* plane, pn_dims d, int x, int y, pn_float v) { pn_store_strip(plane, d, x, y, v, false); }
+PN_FN void pn_store_stream(float* plane, pn_dims d, int x, int y, pn_float v) { pn_store_strip(plane, d, x, y, v, true); }
+PN_FN pn_uint pn_uload(const uint* plane, pn_dims d, int x, int y) { return pn_load_strip(plane, d, x, y); }
+PN_FN void pn_ustore(uint* plane, pn_dims d, int x, int y, pn_uint v) { pn_store_strip(plane, d, x, y, v, false); }
+PN_FN void pn_ustore_stream(uint* plane, pn_dims d, int x, int y, pn_uint v) { pn_store_strip(plane, d, x, y, v, true); }
+
+PN_FN pn_float pn_gather(const float* ptr, pn_int index) { return pn_float::gather(ptr, index); }
+PN_FN pn_uint pn_ugather(const uint* ptr, pn_int index) { return pn_uint::gather(ptr, index); }
+PN_FN pn_float pn_fetch(const float* plane, pn_dims d, pn_int x, pn_int y)
+{
+    const pn_int cx = pn_iclamp(x, pn_int(0), pn_int(d.width - 1));
+    const pn_int cy = pn_iclamp(y, pn_int(0), pn_int(d.height - 1));
+    return pn_gather(plane, cy * d.pitch + cx);
+}
+
+// Inclusive prefix sum across lanes: log2(lanes) steps of "shift up by k lanes
+// (zeros enter) and add" (Hillis & Steele). The shift is a compile-time swizzle
+// followed by a select that zeroes the lanes below k.
+template <class T, unsigned K>
+struct pn_shift_up_index {
+    static constexpr unsigned get(unsigned i, unsigned) { return i >= K ? i - K : 0; }
+};
+template <class T, unsigned K>
+struct pn_lane_at_least {
+    static constexpr bool get(unsigned i, unsigned) { return i >= K; }
+};
+template <class T, unsigned K = 1>
+PN_FN pn_batch_of<T> pn_scan_add_from(pn_batch_of<T> v)
+{
+    if constexpr (K >= unsigned(kLanes)) {
+        return v;
+    } else {
+        using index_batch = xsimd::batch<std::uint32_t, PN_ARCH>;
+        const auto index = xsimd::make_batch_constant<index_batch, pn_shift_up_index<T, K>>();
+        const auto keep = xsimd::make_batch_bool_constant<pn_batch_of<T>, pn_lane_at_least<T, K>>();
+        const pn_batch_of<T> shifted = xsimd::select(keep, xsimd::swizzle(v, index), pn_batch_of<T>(T(0)));
+        return pn_scan_add_from<T, 2 * K>(v + shifted);
+    }
+}
+template <class T>
+struct pn_last_index {
+    static constexpr unsigned get(unsigned, unsigned n) { return n - 1; }
+};
+template <class T>
+PN_FN pn_batch_of<T> pn_broadcast_last(pn_batch_of<T> v)
+{
+    using index_batch = xsimd::batch<std::uint32_t, PN_ARCH>;
+    return xsimd::swizzle(v, xsimd::make_batch_constant<index_batch, pn_last_index<T>>());
+}
+
+#define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); x += kLanes)
+PN_FN pn_float pn_scan_add(pn_float v) { return pn_scan_add_from<float>(v); }
+PN_FN pn_float pn_last(pn_float v) { return pn_broadcast_last<float>(v); }
+PN_FN pn_uint pn_uscan_add(pn_uint v) { return pn_scan_add_from<std::uint32_t>(v); }
+PN_FN pn_uint pn_ulast(pn_uint v) { return pn_broadcast_last<std::uint32_t>(v); }
+template <class T>
+PN_FN T pn_last_lane(pn_batch_of<T> v)
+{
+    alignas(64) T lanes[kLanes];
+    v.store_aligned(lanes);
+    return lanes[kLanes - 1];
+}
+PN_FN float pn_last_value(pn_float v) { return pn_last_lane<float>(v); }
+PN_FN uint pn_ulast_value(pn_uint v) { return pn_last_lane<std::uint32_t>(v); }
+
+// Lane i holds float(i): the x offsets of a strip's pixels.
+PN_FN pn_float pn_lane_offsets()
+{
+    alignas(64) float offsets[kLanes];
+    for (int i = 0; i < kLanes; ++i) offsets[i] = float(i);
+    return pn_float::load_aligned(offsets);
+}
+
+#define PN_PIXEL_ARGS int pn_strip_x, int pn_row_y
+#define PN_PIXEL_BEGIN(width, height)                                     \
+    const int pn_x = pn_strip_x;                                          \
+    const int pn_y = pn_row_y;                                            \
+    const pn_float pn_lane_x = pn_float(float(pn_x)) + pn_lane_offsets(); \
+    const pn_mask pn_active = pn_lane_x < float(width);                   \
+    (void)pn_lane_x;                                                      \
+    (void)pn_active
+#define PN_TASK_ARGS int pn_task_index
+#define PN_TASK_BEGIN(count) const int pn_task = pn_task_index

@@ -1,0 +1,182 @@
+// Summed-area tables of moments against brute-force sums, on every backend.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "penumbra/error.h"
+#include "penumbra/moment_table.h"
+#include "support/backends.h"
+#include "support/maps.h"
+
+namespace penumbra {
+namespace {
+
+using testing::backend_names;
+using testing::backend_test_name;
+
+class MomentTableTest : public ::testing::TestWithParam<std::string> {};
+
+struct Size {
+    int w, h;
+};
+
+std::vector<Size> odd_sizes()
+{
+    std::vector<Size> sizes{{1, 1}, {7, 3}, {1023, 17}, {3, 70}};
+    for (int w : testing::lane_edge_widths()) sizes.push_back({w, 5});
+    sizes.push_back({130, 67});  // two SIMD column bands and two row blocks on any thread count
+    return sizes;
+}
+
+// Every rectangle of small maps, a random sample of larger ones.
+template <class Check>
+void for_rectangles(int w, int h, std::uint32_t seed, Check&& check)
+{
+    if (w * h <= 64) {
+        for (int y0 = 0; y0 < h; ++y0)
+            for (int y1 = y0 + 1; y1 <= h; ++y1)
+                for (int x0 = 0; x0 < w; ++x0)
+                    for (int x1 = x0 + 1; x1 <= w; ++x1) check(x0, x1, y0, y1);
+        return;
+    }
+    std::mt19937 rng(seed);
+    for (int i = 0; i < 300; ++i) {
+        int xa = std::uniform_int_distribution<int>(0, w)(rng), xb = std::uniform_int_distribution<int>(0, w)(rng);
+        int ya = std::uniform_int_distribution<int>(0, h)(rng), yb = std::uniform_int_distribution<int>(0, h)(rng);
+        if (xa == xb) xb = xa == w ? xa - 1 : xa + 1;
+        if (ya == yb) yb = ya == h ? ya - 1 : ya + 1;
+        check(std::min(xa, xb), std::max(xa, xb), std::min(ya, yb), std::max(ya, yb));
+    }
+    check(0, w, 0, h);
+}
+
+PN_BACKEND_TEST(MomentTableTest, ExactSumsMatchBruteForce)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    for (int moments : {2, 4})
+        for (Size s : odd_sizes()) {
+            const Image depth = testing::random_depth(s.w, s.h, 7u * s.w + s.h);
+            const MomentTable table = build_moment_table(ctx, depth, moments, Precision::Exact);
+            for_rectangles(s.w, s.h, 11, [&](int x0, int x1, int y0, int y1) {
+                for (int k = 1; k <= moments; ++k)
+                    ASSERT_EQ(table.exact_box_sum(k, x0, x1, y0, y1), testing::brute_exact_sum(depth, k, x0, x1, y0, y1))
+                        << s.w << "x" << s.h << " moment " << k << " rect [" << x0 << "," << x1 << ")x[" << y0 << ","
+                        << y1 << ")";
+            });
+        }
+}
+
+// Depths in sixteenths keep every float partial sum of z and z^2 exact on
+// these sizes, so float mode must match the brute force to the bit.
+PN_BACKEND_TEST(MomentTableTest, FloatSumsMatchBruteForceExactlyOnDyadicMaps)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    for (Size s : odd_sizes()) {
+        const Image depth = testing::random_depth(s.w, s.h, 3u * s.w + s.h, /*dyadic=*/true);
+        const MomentTable table = build_moment_table(ctx, depth, 2, Precision::Float);
+        for_rectangles(s.w, s.h, 5, [&](int x0, int x1, int y0, int y1) {
+            for (int k = 1; k <= 2; ++k)
+                ASSERT_EQ(table.box_sum(k, x0, x1, y0, y1), testing::brute_sum(depth, k, x0, x1, y0, y1))
+                    << s.w << "x" << s.h << " moment " << k;
+        });
+    }
+}
+
+// Four float moments of random depths: rounding, bounded relative to the
+// magnitude of the table entries involved (sequential float sums).
+PN_BACKEND_TEST(MomentTableTest, FloatFourMomentsWithinRounding)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    const Image depth = testing::random_depth(157, 43, 99);
+    const MomentTable table = build_moment_table(ctx, depth, 4, Precision::Float);
+    for_rectangles(157, 43, 17, [&](int x0, int x1, int y0, int y1) {
+        for (int k = 1; k <= 4; ++k) {
+            const double magnitude = testing::brute_sum(depth, k, 0, x1, 0, y1);
+            ASSERT_NEAR(table.box_sum(k, x0, x1, y0, y1), testing::brute_sum(depth, k, x0, x1, y0, y1),
+                        4e-6 * magnitude + 1e-6);
+        }
+    });
+}
+
+PN_BACKEND_TEST(MomentTableTest, ExactOnConstantAndRampAt1024)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    const int n = 1024;
+    Image ramp(n, n, 1), flat(n, n, 1);
+    flat.fill(0, 1.0f);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) ramp.at(0, x, y) = float((x + y) % 1000) / 999.0f;
+    for (const Image* map : {&flat, &ramp}) {
+        const MomentTable table = build_moment_table(ctx, *map, 2, Precision::Exact);
+        for_rectangles(n, n, 23, [&](int x0, int x1, int y0, int y1) {
+            if ((x1 - x0) * (y1 - y0) > kExactMaxWindowArea) return;
+            for (int k = 1; k <= 2; ++k)
+                ASSERT_EQ(table.exact_box_sum(k, x0, x1, y0, y1), testing::brute_exact_sum(*map, k, x0, x1, y0, y1));
+        });
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, MomentTableTest, ::testing::ValuesIn(backend_names()), backend_test_name);
+
+// The exact claim at the largest supported size: every window of at most
+// 65537 texels has exact sums, though the table itself wraps many times.
+TEST(MomentTableSlowTest, ExactAt16384OnConstantAndRamp)
+{
+    Context ctx(ContextOptions{Backend::Simd, {}});
+    const int n = 16384;
+    Image map(n, n, 1);
+    for (int pattern = 0; pattern < 2; ++pattern) {
+        for (int y = 0; y < n; ++y) {
+            float* row = map.row(0, y);
+            for (int x = 0; x < n; ++x) row[x] = pattern == 0 ? 1.0f : float((x + 3 * y) % 4096) / 4095.0f;
+        }
+        const MomentTable table = build_moment_table(ctx, map, 2, Precision::Exact);
+        std::mt19937 rng(5);
+        std::uniform_int_distribution<int> pos(0, n - 1), len(1, 255);
+        int checked = 0;
+        auto check = [&](int x0, int x1, int y0, int y1) {
+            for (int k = 1; k <= 2; ++k)
+                ASSERT_EQ(table.exact_box_sum(k, x0, x1, y0, y1), testing::brute_exact_sum(map, k, x0, x1, y0, y1))
+                    << "pattern " << pattern << " rect [" << x0 << "," << x1 << ")x[" << y0 << "," << y1 << ")";
+            ++checked;
+        };
+        for (int i = 0; i < 400; ++i) {
+            const int x0 = pos(rng), y0 = pos(rng);
+            check(x0, std::min(n, x0 + len(rng)), y0, std::min(n, y0 + len(rng)));
+        }
+        check(n - 255, n, n - 257, n);  // the far corner: the most wrapped entries
+        check(0, 255, 0, 257);
+        EXPECT_EQ(checked, 402);
+    }
+}
+
+TEST(MomentTableErrors, RejectsBadMaps)
+{
+    Context ctx(ContextOptions{Backend::Scalar, {}});
+    auto expect_error = [&](const Image& map, ErrorCategory category, const char* needle) {
+        try {
+            build_moment_table(ctx, map);
+            FAIL() << "no error for " << needle;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.category(), category);
+            EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+        }
+    };
+    expect_error(Image(0, 4, 1), ErrorCategory::InvalidArgument, "empty");
+    expect_error(Image(4, 4, 2), ErrorCategory::InvalidArgument, "one channel");
+    Image nan_map(4, 4, 1);
+    nan_map.at(0, 2, 1) = std::nanf("");
+    expect_error(nan_map, ErrorCategory::InvalidData, "non-finite");
+    Image inf_map(4, 4, 1);
+    inf_map.at(0, 3, 3) = INFINITY;
+    expect_error(inf_map, ErrorCategory::InvalidData, "(3, 3)");
+    Image outside(4, 4, 1);
+    outside.at(0, 1, 0) = 1.5f;
+    expect_error(outside, ErrorCategory::InvalidData, "outside [0, 1]");
+    EXPECT_THROW(build_moment_table(ctx, Image(4, 4, 1), 3), Error);
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -1,0 +1,59 @@
+// Every backend this machine has, for parameterised tests: scalar, each SIMD
+// ISA the CPU runs, and OpenCL. A backend that cannot start here (OpenCL with
+// no device) makes its tests GTEST_SKIP with the reason: never a silent pass.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "penumbra/context.h"
+
+namespace penumbra::testing {
+
+// "scalar", "sse4.2", "avx2", "avx512" (those this CPU runs), "opencl".
+std::vector<std::string> backend_names();
+// Lanes of a backend's strips (1 for scalar and OpenCL).
+int backend_lanes(const std::string& name);
+
+// One context per backend per test process (the OpenCL program is built once).
+// Returns nullptr and sets `why` when the backend cannot start here.
+Context* shared_context(const std::string& name, std::string* why);
+
+// For gtest's name generator: "avx512", "sse4_2", ...
+std::string backend_test_name(const ::testing::TestParamInfo<std::string>& info);
+
+// Widths that exercise every strip/tail shape of every lane count here:
+// 1, N-1, N, N+1, 3N+1 for each ISA's N.
+std::vector<int> lane_edge_widths();
+
+}  // namespace penumbra::testing
+
+// In a test body: Context& ctx = PN_CONTEXT_OR_SKIP(GetParam());
+#define PN_CONTEXT_OR_SKIP(name)                                                  \
+    ([&]() -> penumbra::Context& {                                                \
+        std::string why_;                                                         \
+        penumbra::Context* c_ = penumbra::testing::shared_context((name), &why_); \
+        if (!c_) throw penumbra::testing::SkipBackend{why_};                      \
+        return *c_;                                                               \
+    }())
+
+namespace penumbra::testing {
+struct SkipBackend {
+    std::string why;
+};
+}  // namespace penumbra::testing
+
+// Wraps a test body so that an unavailable backend skips the test with its reason.
+#define PN_BACKEND_TEST(suite, name)                                       \
+    static void suite##_##name##_body(const std::string& backend);          \
+    TEST_P(suite, name)                                                     \
+    {                                                                       \
+        try {                                                               \
+            suite##_##name##_body(GetParam());                              \
+        } catch (const penumbra::testing::SkipBackend& skip) {              \
+            GTEST_SKIP() << "backend " << GetParam() << " unavailable here: " << skip.why; \
+        }                                                                   \
+    }                                                                       \
+    static void suite##_##name##_body(const std::string& backend)

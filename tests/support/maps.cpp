@@ -1,0 +1,65 @@
+#include "support/maps.h"
+
+#include <cmath>
+
+namespace penumbra::testing {
+
+Image random_depth(int width, int height, std::uint32_t seed, bool dyadic)
+{
+    Image depth(width, height, 1);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    std::uniform_int_distribution<int> sixteenths(0, 16);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) depth.at(0, x, y) = dyadic ? float(sixteenths(rng)) / 16.0f : uniform(rng);
+    return depth;
+}
+
+Image receivers_on_texels(int width, int height, int map_w, int map_h, float z_lo, float z_hi, std::uint32_t seed)
+{
+    Image rx(width, height, 3);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> depth(z_lo, z_hi);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            rx.at(0, x, y) = (float(x % map_w) + 0.5f) / float(map_w);
+            rx.at(1, x, y) = (float(y % map_h) + 0.5f) / float(map_h);
+            rx.at(2, x, y) = depth(rng);
+        }
+    return rx;
+}
+
+Image receivers_at_depth(int map_w, int map_h, float z)
+{
+    Image rx = receivers_on_texels(map_w, map_h, map_w, map_h, 0.0f, 0.0f, 1);
+    rx.fill(2, z);
+    return rx;
+}
+
+std::uint32_t exact_moment(float z, int k)
+{
+    // Same operations as sat_block_exact (kernels/moment_table.h).
+    const float scaled = z * 65535.0f + 0.5f;
+    const std::uint32_t q = std::uint32_t(std::floor(scaled));
+    std::uint32_t m = q;
+    for (int i = 1; i < k; ++i) m = (m * q + 32768u) >> 16;
+    return m;
+}
+
+double brute_sum(const Image& depth, int k, int x0, int x1, int y0, int y1)
+{
+    double sum = 0.0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) sum += std::pow(double(depth.at(0, x, y)), k);
+    return sum;
+}
+
+std::uint32_t brute_exact_sum(const Image& depth, int k, int x0, int x1, int y0, int y1)
+{
+    std::uint64_t sum = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) sum += exact_moment(depth.at(0, x, y), k);
+    return std::uint32_t(sum);
+}
+
+}  // namespace penumbra::testing

@@ -1,0 +1,30 @@
+// Small synthetic inputs and independent references for kernel tests.
+#pragma once
+
+#include <cstdint>
+#include <random>
+
+#include "penumbra/image.h"
+
+namespace penumbra::testing {
+
+// Depths uniform in [0, 1]; with `dyadic`, multiples of 1/16, so that float
+// sums of z and z^2 stay exact on small maps (an exact reference for float mode).
+Image random_depth(int width, int height, std::uint32_t seed, bool dyadic = false);
+
+// Receivers (u, v, z) on a grid: u, v at texel centres of a map of size
+// map_w x map_h (cycling when the grid is larger), z uniform in [z_lo, z_hi].
+Image receivers_on_texels(int width, int height, int map_w, int map_h, float z_lo, float z_hi,
+                          std::uint32_t seed);
+
+// One receiver per texel centre of the map, all at depth z.
+Image receivers_at_depth(int map_w, int map_h, float z);
+
+// The exact table's quantized moment k (1-based) of depth z, as the kernel computes it.
+std::uint32_t exact_moment(float z, int k);
+
+// Brute-force sums over texels [x0, x1) x [y0, y1).
+double brute_sum(const Image& depth, int k, int x0, int x1, int y0, int y1);
+std::uint32_t brute_exact_sum(const Image& depth, int k, int x0, int x1, int y0, int y1);
+
+}  // namespace penumbra::testing
