@@ -1,1 +1,63 @@
-int main() { return 0; }
+// penumbra: the command-line tool. Exit status: 0 success, 2 bad input (bad
+// options, unreadable or invalid files, a backend this machine lacks), 1 any
+// other failure (a backend error, a bug). Errors are one line on stderr.
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "args.h"
+#include "commands.h"
+#include "penumbra/error.h"
+
+namespace {
+
+const char* kUsage =
+    "penumbra: shadow-filtering kernels on SIMD CPUs and OpenCL\n"
+    "\n"
+    "usage: penumbra <command> [options]\n"
+    "  info [--json] [--verbose]   backends, the one Auto chooses and why, CPU ISAs, OpenCL devices\n"
+    "  shade --method vsm|vssm --shadow-map SM.exr --receivers RX.exr --out OUT.exr [options]\n"
+    "                              filter a shadow map for a set of receivers (shade --help)\n"
+    "  example --out DIR           write a small synthetic shadow map and receivers to DIR\n"
+    "\n"
+    "Environment: PENUMBRA_BACKEND=auto|simd|opencl|scalar overrides Auto;\n"
+    "PENUMBRA_SIMD_ISA=sse4.2|avx2|avx512 forces an ISA.\n";
+
+std::string one_line(std::string text)
+{
+    for (char& c : text)
+        if (c == '\n' || c == '\r') c = ' ';
+    return text;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+        std::cout << kUsage;
+        return args.empty() ? 2 : 0;
+    }
+    const std::string command = args[0];
+    args.erase(args.begin());
+    try {
+        if (command == "info") return penumbra::cli::info_command(args);
+        if (command == "shade") return penumbra::cli::shade_command(args);
+        if (command == "example") return penumbra::cli::example_command(args);
+        std::cerr << "penumbra: unknown command '" << command << "' (see penumbra --help)\n";
+        return 2;
+    } catch (const penumbra::cli::UsageError& e) {
+        std::cerr << "penumbra " << command << ": " << one_line(e.message) << "\n";
+        return 2;
+    } catch (const penumbra::Error& e) {
+        const bool bad_input = e.category() != penumbra::ErrorCategory::Backend;
+        std::cerr << "penumbra " << command << ": " << (bad_input ? one_line(e.what()) : std::string(e.what()))
+                  << "\n";
+        return bad_input ? 2 : 1;
+    } catch (const std::exception& e) {
+        std::cerr << "penumbra " << command << ": internal error: " << one_line(e.what()) << "\n";
+        return 1;
+    }
+}

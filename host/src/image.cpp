@@ -29,6 +29,17 @@ AlignedBuffer::AlignedBuffer(std::size_t bytes) : size_(bytes)
     data_.reset(p);
 }
 
+AlignedBuffer::AlignedBuffer(const AlignedBuffer& other) : AlignedBuffer(other.size_)
+{
+    if (size_) std::memcpy(data_.get(), other.data_.get(), size_);
+}
+
+AlignedBuffer& AlignedBuffer::operator=(const AlignedBuffer& other)
+{
+    if (this != &other) *this = AlignedBuffer(other);
+    return *this;
+}
+
 Image::Image(int width, int height, int channels)
 {
     require(width >= 0 && height >= 0, "Image",

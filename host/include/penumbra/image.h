@@ -27,6 +27,11 @@ class AlignedBuffer {
 public:
     AlignedBuffer() = default;
     explicit AlignedBuffer(std::size_t bytes);
+    // Copies are deep: images are values.
+    AlignedBuffer(const AlignedBuffer& other);
+    AlignedBuffer& operator=(const AlignedBuffer& other);
+    AlignedBuffer(AlignedBuffer&&) noexcept = default;
+    AlignedBuffer& operator=(AlignedBuffer&&) noexcept = default;
 
     std::byte* data() noexcept { return data_.get(); }
     const std::byte* data() const noexcept { return data_.get(); }

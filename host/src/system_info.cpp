@@ -1,0 +1,64 @@
+#include "penumbra/system_info.h"
+
+#include <cstdlib>
+
+#include "penumbra/config.h"
+#include "penumbra/context.h"
+#include "penumbra/error.h"
+#include "simd/cpu_kernels.h"
+#if PENUMBRA_OPENCL
+#include "cl/opencl_runtime.h"
+#include "cl/program_cache.h"
+#endif
+
+namespace penumbra {
+namespace {
+
+void describe_opencl(SystemInfo& info)
+{
+#if PENUMBRA_OPENCL
+    info.opencl_built = true;
+    const cl_backend::DeviceList list = cl_backend::list_devices();
+    info.opencl_problem = list.problem;
+    for (const cl_backend::DeviceInfo& d : list.devices)
+        info.opencl_devices.push_back(
+            {d.platform_name, d.platform_version, d.device_name, d.device_version, d.driver_version, d.type, d.compute_units});
+    info.cache_directory = cl_backend::cache_directory();
+    if (info.opencl_devices.empty() && info.opencl_problem.empty()) info.opencl_problem = "no OpenCL device found";
+#else
+    info.opencl_problem = "this build has no OpenCL backend (PENUMBRA_OPENCL=OFF)";
+#endif
+}
+
+}  // namespace
+
+SystemInfo describe_system(bool measure_opencl_build)
+{
+    SystemInfo info;
+    info.version = PENUMBRA_VERSION;
+    for (std::string_view isa : cpu::supported_isas()) info.cpu_isas.emplace_back(isa);
+    info.chosen_isa = cpu::chosen_isa();
+    const char* forced = std::getenv("PENUMBRA_SIMD_ISA");
+    info.isa_reason = forced && *forced ? "forced by PENUMBRA_SIMD_ISA" : "the widest ISA this CPU runs";
+    describe_opencl(info);
+    info.backends = {"scalar", "simd"};
+    if (!info.opencl_devices.empty()) info.backends.push_back("opencl");
+
+    Context automatic;
+    info.auto_backend = to_string(automatic.backend());
+    info.auto_description = automatic.description();
+    info.auto_reason = automatic.reason();
+    info.auto_warnings = automatic.warnings();
+
+    if (measure_opencl_build && !info.opencl_devices.empty()) {
+        try {
+            Context opencl(ContextOptions{Backend::OpenCL, {}});
+            info.opencl_build_seconds = opencl.program_build_seconds();
+        } catch (const Error& e) {
+            info.opencl_build_error = e.what();
+        }
+    }
+    return info;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs everything penumbra needs on Debian 12 (run as root). Every
+# dependency is a Debian package: the toolchain, xsimd, oneTBB, OpenEXR, the
+# OpenCL ICD loader with its C and C++ headers, PoCL (an OpenCL CPU driver, so
+# the OpenCL backend runs on any machine), GoogleTest, Google Benchmark,
+# nlohmann-json, zlib; OpenCV only as a benchmark and test peer; matplotlib for
+# the charts.
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+packages=(
+  cmake ninja-build g++ pkg-config
+  libxsimd-dev libtbb-dev libopenexr-dev zlib1g-dev nlohmann-json3-dev
+  ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libopencv-dev libopencv-contrib-dev
+  python3-matplotlib python3-numpy
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  apt-get update -q
+  apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
