@@ -110,8 +110,28 @@ PN_FN pn_uint pn_uload(const uint* plane, pn_dims d, int x, int y) { return pn_l
 PN_FN void pn_ustore(uint* plane, pn_dims d, int x, int y, pn_uint v) { pn_store_strip(plane, d, x, y, v, false); }
 PN_FN void pn_ustore_stream(uint* plane, pn_dims d, int x, int y, pn_uint v) { pn_store_strip(plane, d, x, y, v, true); }
 
-PN_FN pn_float pn_gather(const float* ptr, pn_int index) { return pn_float::gather(ptr, index); }
-PN_FN pn_uint pn_ugather(const uint* ptr, pn_int index) { return pn_uint::gather(ptr, index); }
+// Gathers use the ISA's instruction directly: xsimd 8.1 picks its generic
+// (scalar) gather for AVX-512 whatever the element type. Integer data is
+// gathered as float bits, which the instruction moves unchanged. SSE4.2 has
+// no gather instruction: a loop through memory.
+PN_FN pn_float pn_gather(const float* ptr, pn_int index)
+{
+#if defined(PN_ISA_avx512)
+    return _mm512_i32gather_ps(index, ptr, 4);
+#elif defined(PN_ISA_avx2)
+    return _mm256_i32gather_ps(ptr, index, 4);
+#else
+    alignas(64) std::int32_t lanes[kLanes];
+    alignas(64) float values[kLanes];
+    index.store_aligned(lanes);
+    for (int i = 0; i < kLanes; ++i) values[i] = ptr[lanes[i]];
+    return pn_float::load_aligned(values);
+#endif
+}
+PN_FN pn_uint pn_ugather(const uint* ptr, pn_int index)
+{
+    return xsimd::bitwise_cast<pn_uint>(pn_gather(reinterpret_cast<const float*>(ptr), index));
+}
 PN_FN pn_float pn_fetch(const float* plane, pn_dims d, pn_int x, pn_int y)
 {
     const pn_int cx = pn_iclamp(x, pn_int(0), pn_int(d.width - 1));

@@ -41,9 +41,30 @@ ChebyshevParams base_params(const MomentTable& table, const Image& receivers, co
     return p;
 }
 
+void check_output(const std::string& op, const Image& receivers, const Image& out)
+{
+    require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), op,
+            "the output must be a 1-channel image of the receivers' size (" + std::to_string(receivers.width()) +
+                "x" + std::to_string(receivers.height()) + ")");
+}
+
 }  // namespace
 
 Image vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options)
+{
+    Image out(receivers.width(), receivers.height(), 1);
+    vsm(context, table, receivers, options, out);
+    return out;
+}
+
+Image vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options)
+{
+    Image out(receivers.width(), receivers.height(), 1);
+    vssm(context, table, receivers, options, out);
+    return out;
+}
+
+void vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options, Image& out)
 {
     const std::string op = "vsm";
     check_receivers(op, table, receivers);
@@ -54,14 +75,13 @@ Image vsm(Context& context, const MomentTable& table, const Image& receivers, co
                 "radius " + std::to_string(options.radius) + " exceeds " + std::to_string(kExactMaxRadius) +
                     ", the largest window (255x255 texels) whose sums an exact table keeps exact; use "
                     "--precision float or a smaller radius");
-    Image out(receivers.width(), receivers.height(), 1);
+    check_output(op, receivers, out);
     ChebyshevParams p = base_params(table, receivers, out, options.min_variance, options.bleed);
     p.radius = options.radius;
     context.impl().chebyshev(detail::ChebyshevMethod::Vsm, table, receivers, p, out);
-    return out;
 }
 
-Image vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options)
+void vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options, Image& out)
 {
     const std::string op = "vssm";
     check_receivers(op, table, receivers);
@@ -80,12 +100,11 @@ Image vssm(Context& context, const MomentTable& table, const Image& receivers, c
                     " texels, more than an exact table keeps exact (253); use --precision float or a "
                     "smaller light");
     }
-    Image out(receivers.width(), receivers.height(), 1);
+    check_output(op, receivers, out);
     ChebyshevParams p = base_params(table, receivers, out, options.min_variance, options.bleed);
     p.light_size = options.light_size;
     p.max_radius = max_radius;
     context.impl().chebyshev(detail::ChebyshevMethod::Vssm, table, receivers, p, out);
-    return out;
 }
 
 }  // namespace penumbra

@@ -86,6 +86,8 @@ static void check_depth_map(const Image& depth)
     require(!depth.empty(), op, "the shadow map is empty (0 pixels)");
     require(depth.channels() == 1, op,
             "the shadow map must have one channel (depth), got " + std::to_string(depth.channels()));
+    // One pass in the common case: [0, 1] excludes NaN and infinities too.
+    if (channel_within(depth, 0, 0.0f, 1.0f)) return;
     require_finite(depth, op, "the shadow map");
     for (int y = 0; y < depth.height(); ++y)
         for (int x = 0; x < depth.width(); ++x) {
@@ -104,6 +106,17 @@ MomentTable build_moment_table(Context& context, const Image& depth, int moments
     MomentTable table(depth.width(), depth.height(), moments, precision);
     context.impl().build_moment_table(depth, table);
     return table;
+}
+
+void build_moment_table(Context& context, const Image& depth, MomentTable& table)
+{
+    check_depth_map(depth);
+    require(!table.empty() && table.width() == depth.width() && table.height() == depth.height(),
+            "build_moment_table", "the table is " + std::to_string(table.width()) + "x" +
+                                      std::to_string(table.height()) + " but the map is " +
+                                      std::to_string(depth.width()) + "x" + std::to_string(depth.height()) +
+                                      "; allocate it as MomentTable(width, height, moments, precision)");
+    context.impl().build_moment_table(depth, table);
 }
 
 std::string to_string(Precision precision) { return precision == Precision::Exact ? "exact" : "float"; }

@@ -32,4 +32,9 @@ struct VssmOptions {
 Image vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options);
 Image vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options);
 
+// The same into an existing 1-channel image of the receivers' size: no
+// allocation, for per-frame use.
+void vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options, Image& out);
+void vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options, Image& out);
+
 }  // namespace penumbra

@@ -75,6 +75,11 @@ private:
     AlignedBuffer storage_;
 };
 
+// True if every pixel of channel c lies in [lo, hi]; NaN never does. A fast,
+// vectorised and parallel pass, so that validation costs little next to the
+// kernels it guards.
+bool channel_within(const Image& image, int c, float lo, float hi);
+
 // Where the first non-finite value of an image is, for error messages.
 struct NonFinite {
     bool found = false;

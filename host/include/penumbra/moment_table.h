@@ -67,6 +67,10 @@ private:
 MomentTable build_moment_table(Context& context, const Image& depth, int moments = 2,
                                Precision precision = Precision::Exact);
 
+// The same into an existing table of the map's size (its moments and
+// precision are kept): no allocation, for per-frame use.
+void build_moment_table(Context& context, const Image& depth, MomentTable& table);
+
 std::string to_string(Precision precision);
 Precision parse_precision(const std::string& name);
 
