@@ -79,4 +79,6 @@ PN_FN std::uint32_t pn_ulast_value(std::uint32_t v) { return v; }
     (void)pn_lane_x;                          \
     (void)pn_active
 #define PN_TASK_ARGS int pn_task_index
-#define PN_TASK_BEGIN(count) const int pn_task = pn_task_index
+#define PN_TASK_BEGIN(count) \
+    const int pn_task = pn_task_index; \
+    (void)(count)

@@ -206,4 +206,6 @@ PN_FN pn_float pn_lane_offsets()
     (void)pn_lane_x;                                                      \
     (void)pn_active
 #define PN_TASK_ARGS int pn_task_index
-#define PN_TASK_BEGIN(count) const int pn_task = pn_task_index
+#define PN_TASK_BEGIN(count) \
+    const int pn_task = pn_task_index; \
+    (void)(count)

@@ -1,0 +1,207 @@
+// The kernel registry (kernels/registry.h) against every backend, and the
+// purity of the kernel descriptions (STYLE.md items 2 and 7).
+//
+// Registry -> CPU tables: each entry is named as a CpuKernels member through
+// the X-macro, so an entry without a table member does not compile, and a null
+// pointer in any table fails. Tables -> registry: the table's size is pinned
+// to the registry's length, so a member without an entry fails to compile.
+// Registry <-> OpenCL: every entry is a cl::Kernel of the embedded program,
+// and the program has no kernel the registry lacks. Registry <-> sources:
+// every PN_KERNEL in kernels/ is an entry and every entry a PN_KERNEL.
+#include "kernels/registry.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "penumbra/config.h"
+#include "simd/cpu_kernels.h"
+#include "support/backends.h"
+#if PENUMBRA_OPENCL
+#include "cl/opencl_backend.h"
+#include "cl/opencl_runtime.h"
+#endif
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::set<std::string> registry_names()
+{
+    std::set<std::string> names;
+#define PN_REGISTRY_NAME(entry) names.insert(#entry);
+    PN_KERNEL_REGISTRY(PN_REGISTRY_NAME)
+#undef PN_REGISTRY_NAME
+    return names;
+}
+
+constexpr int registry_size()
+{
+    int n = 0;
+#define PN_REGISTRY_COUNT(entry) ++n;
+    PN_KERNEL_REGISTRY(PN_REGISTRY_COUNT)
+#undef PN_REGISTRY_COUNT
+    return n;
+}
+
+// isa, lanes, the two wavefront block functions, then one pointer per entry.
+static_assert(sizeof(cpu::CpuKernels) ==
+                  offsetof(cpu::CpuKernels, sat_block_float) + (2 + registry_size()) * sizeof(void (*)()),
+              "CpuKernels has a member that kernels/registry.h lacks (or the reverse)");
+
+std::vector<std::string> cpu_tables()
+{
+    std::vector<std::string> names{"scalar"};
+    for (std::string_view isa : cpu::supported_isas()) names.emplace_back(isa);
+    return names;
+}
+
+TEST(Registry, EveryEntryIsInEveryCpuTable)
+{
+    ASSERT_GE(registry_size(), 8);
+    for (const std::string& isa : cpu_tables()) {
+        const cpu::CpuKernels& table = cpu::kernels_for(isa);
+        EXPECT_EQ(std::string(table.isa), isa);
+        EXPECT_GE(table.lanes, 1);
+#define PN_CHECK_ENTRY(entry) EXPECT_NE(table.entry, nullptr) << isa << " has no " #entry;
+        PN_KERNEL_REGISTRY(PN_CHECK_ENTRY)
+#undef PN_CHECK_ENTRY
+        EXPECT_NE(table.sat_block_float, nullptr) << isa;
+        EXPECT_NE(table.sat_block_exact, nullptr) << isa;
+    }
+}
+
+TEST(Registry, EveryEntryIsAKernelOfTheOpenClProgram)
+{
+#if PENUMBRA_OPENCL
+    std::string why;
+    if (!testing::shared_context("opencl", &why)) GTEST_SKIP() << "OpenCL unavailable here: " << why;
+    std::vector<std::string> backend_names = cl_backend::registry_kernel_names();
+    EXPECT_EQ(std::set<std::string>(backend_names.begin(), backend_names.end()), registry_names());
+
+    // The same program the context built (same source and options: a cache hit).
+    cl_backend::Runtime runtime(cl_backend::DeviceChoice::Any);
+    const cl::Program program = runtime.build(cl_backend::kEmbeddedProgramSource, cl_backend::kProgramOptions);
+    for (const std::string& name : registry_names()) {
+        try {
+            cl::Kernel kernel(program, name.c_str());
+            EXPECT_EQ(kernel.getInfo<CL_KERNEL_FUNCTION_NAME>(), name);
+        } catch (const cl::Error& e) {
+            ADD_FAILURE() << "no kernel " << name << " in the OpenCL program: " << cl_backend::opencl_error_name(e.err());
+        }
+    }
+    std::string listed = program.getInfo<CL_PROGRAM_KERNEL_NAMES>();
+    listed.erase(std::remove(listed.begin(), listed.end(), '\0'), listed.end());  // a driver's trailing NUL
+    std::set<std::string> in_program;
+    std::stringstream names(listed);
+    for (std::string name; std::getline(names, name, ';');)
+        if (!name.empty()) in_program.insert(name);
+    EXPECT_EQ(in_program, registry_names()) << "the OpenCL program's kernels differ from the registry";
+#else
+    GTEST_SKIP() << "this build has no OpenCL backend (PENUMBRA_OPENCL=OFF)";
+#endif
+}
+
+// ---- the kernel descriptions ------------------------------------------------------
+
+struct Source {
+    std::string name, text;
+};
+
+std::vector<Source> kernel_sources()
+{
+    std::vector<Source> sources;
+    for (const fs::directory_entry& entry : fs::directory_iterator(fs::path(PENUMBRA_SOURCE_DIR) / "kernels")) {
+        if (!entry.is_regular_file()) continue;
+        std::ifstream in(entry.path(), std::ios::binary);
+        std::stringstream text;
+        text << in.rdbuf();
+        sources.push_back({entry.path().filename().string(), text.str()});
+    }
+    return sources;
+}
+
+// Comments replaced by a space (string literals do not occur in descriptions).
+std::string without_comments(const std::string& text)
+{
+    return std::regex_replace(text, std::regex(R"(/\*[\s\S]*?\*/|//[^\n]*)"), " ");
+}
+
+// What a description must not say: the ISA, xsimd, OpenCL's own spellings, or
+// a lane count (the bindings' PN_LANES / kLanes, or a macro of the sort).
+const std::vector<std::pair<std::string, std::regex>>& forbidden()
+{
+    static const std::vector<std::pair<std::string, std::regex>> patterns = {
+        {"xsimd", std::regex("xsimd", std::regex::icase)},
+        {"get_global_id", std::regex("get_global_id")},
+        {"__kernel", std::regex("__kernel")},
+        {"_mm intrinsic", std::regex(R"((^|[^A-Za-z0-9])_mm)", std::regex::icase)},
+        {"batch<", std::regex(R"(batch\s*<)")},
+        {"avx", std::regex(R"((^|[^A-Za-z0-9])avx)", std::regex::icase)},
+        {"sse", std::regex(R"((^|[^A-Za-z0-9])sse)", std::regex::icase)},
+        {"lane count macro", std::regex(R"(\b([A-Z0-9]+_)*LANES?(_[A-Z0-9]+)*\b|\bkLanes\b|#\s*define\s+\w*(WIDTH|VECTOR|SIMD)\w*\s+[0-9])")},
+    };
+    return patterns;
+}
+
+std::vector<std::string> violations(const std::string& text)
+{
+    std::vector<std::string> found;
+    for (const auto& [what, pattern] : forbidden()) {
+        std::smatch m;
+        if (std::regex_search(text, m, pattern)) found.push_back(what + " (\"" + m.str() + "\")");
+    }
+    return found;
+}
+
+TEST(DialectPurity, PatternsCatchWhatTheyShould)
+{
+    for (const char* bad : {"xsimd::batch<float> v;", "__m512 a = _mm512_add_ps(b, c);", "size_t i = get_global_id(0);",
+                            "__kernel void f()", "#if defined(__AVX2__)", "// for SSE4.2", "#define PN_LANES 8", "PN_LANE_COUNT",
+                            "x += kLanes;", "#define PN_SIMD_WIDTH 16", "batch <float>"})
+        EXPECT_FALSE(violations(bad).empty()) << bad;
+    for (const char* fine : {"it passes the classes", "pn_float pn_lane_x;", "PN_KERNEL void vsm_float(",
+                             "/* plane */ PN_PLANE(ptr, d, 0)", "pn_mm", "#define PN_EXACT_STEPS 65535.0f"})
+        EXPECT_TRUE(violations(fine).empty()) << fine << ": " << ::testing::PrintToString(violations(fine));
+}
+
+TEST(DialectPurity, KernelDescriptionsNameNoIsaNoLanesNoOpenCl)
+{
+    const std::vector<Source> sources = kernel_sources();
+    ASSERT_GE(sources.size(), 6u) << "read kernels/ from " << PENUMBRA_SOURCE_DIR;
+    bool saw_dialect = false;
+    for (const Source& s : sources) {
+        // dialect.h's comment is the contract and names what it forbids; its code must not.
+        const bool dialect = s.name == "dialect.h";
+        saw_dialect |= dialect;
+        const std::string text = dialect ? without_comments(s.text) : s.text;
+        ASSERT_GT(text.size(), 100u) << s.name;
+        for (const std::string& v : violations(text)) ADD_FAILURE() << "kernels/" << s.name << " mentions " << v;
+    }
+    EXPECT_TRUE(saw_dialect);
+}
+
+TEST(DialectPurity, EveryKernelEntryPointIsRegistered)
+{
+    std::set<std::string> declared;
+    const std::regex entry(R"(PN_KERNEL\s+void\s+(\w+)\s*\()");
+    for (const Source& s : kernel_sources()) {
+        if (s.name == "dialect.h") continue;
+        const std::string code = without_comments(s.text);
+        for (auto it = std::sregex_iterator(code.begin(), code.end(), entry); it != std::sregex_iterator(); ++it)
+            declared.insert((*it)[1].str());
+    }
+    EXPECT_EQ(declared, registry_names()) << "a PN_KERNEL missing from kernels/registry.h, or an entry with no kernel";
+}
+
+}  // namespace
+}  // namespace penumbra
