@@ -1,0 +1,45 @@
+// Ground truth: the fraction of the area light visible from each receiver,
+// by stratified ray casting against the analytic primitives.
+//
+// Sampling (docs/reference.md, "Ground truth"): the light's rectangle, or the
+// square that a disk is mapped from by Shirley and Chiu's concentric map
+// (area-preserving, so strata stay equal in area), is cut into n x n equal
+// strata, one uniformly jittered sample in each. The sample positions come
+// from a SplitMix64 stream seeded by (options.seed, pixel index), so a pixel's
+// value does not depend on threads, tiles or the image's other pixels.
+// Visibility is unweighted (no cosine, no distance falloff): it is the
+// quantity the shadow-map methods estimate.
+#pragma once
+
+#include <cstdint>
+
+#include "penumbra/image.h"
+#include "penumbra/reference_render.h"
+#include "penumbra/reference_scene.h"
+#include "penumbra/reference_tracer.h"
+
+namespace penumbra::reference {
+
+struct GroundTruthOptions {
+    int strata = 16;  // n: n x n samples per receiver
+    std::uint64_t seed = 0x9e3779b97f4a7c15ull;
+};
+
+// The shadow rays leave from the receiver lifted along its normal by
+// kNormalOffset * (1 + max |coordinate|): ten times the rounding of a float
+// position (receivers store float), so a receiver never shadows itself by
+// rounding, and small enough (1e-6 of the scene's scale) not to open contacts.
+inline constexpr double kNormalOffset = 1e-6;
+
+// Y: one channel on the receivers' grid, in [0, 1]. 1 where no surface is seen
+// (receivers.hit == 0); computed for every hit pixel, in or out of the light
+// frustum (the mask is for the shadow-map methods, which cannot see outside it).
+// Throws Error(InvalidArgument) for strata outside [1, 4096].
+Image ground_truth(const Scene& scene, const Receivers& receivers, const GroundTruthOptions& options = {});
+
+// The visible fraction for one receiver point; `stream` seeds its samples.
+// 0 for a point behind the light's plane (the light is one-sided).
+double light_visibility(const PreparedScene& prepared, const AreaLight& light, Vec3 position, Vec3 normal,
+                        int strata, std::uint64_t stream);
+
+}  // namespace penumbra::reference

@@ -1,0 +1,79 @@
+// Stratified sampling of the area light and the visibility of one receiver.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "penumbra/reference_ground_truth.h"
+
+namespace penumbra::reference {
+namespace {
+
+// SplitMix64 (Steele, Lea and Flood 2014): a 64-bit counter pushed through a
+// bijective mixer. Cheap, stateless to seed, and good enough for jitter.
+class SplitMix64 {
+public:
+    explicit SplitMix64(std::uint64_t state) : state_(state) {}
+
+    std::uint64_t next()
+    {
+        std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return z ^ (z >> 31);
+    }
+    // Uniform in [0, 1): the top 53 bits as a double's mantissa.
+    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
+
+private:
+    std::uint64_t state_;
+};
+
+// Shirley and Chiu 1997: squares around the centre of [-1, 1]^2 go to circles,
+// preserving area, so equal strata of the square are equal areas of the disk.
+Vec3 concentric_disk(double a, double b)
+{
+    const double x = 2 * a - 1, y = 2 * b - 1;
+    if (x == 0 && y == 0) return {};
+    constexpr double quarter_pi = std::numbers::pi / 4;
+    if (std::fabs(x) > std::fabs(y)) {
+        const double phi = quarter_pi * (y / x);
+        return {x * std::cos(phi), x * std::sin(phi), 0};
+    }
+    const double phi = 2 * quarter_pi - quarter_pi * (x / y);
+    return {y * std::cos(phi), y * std::sin(phi), 0};
+}
+
+// The light point for a sample (a, b) of the unit square, in the light's frame.
+Vec3 light_point(const AreaLight& light, const Basis& frame, double a, double b)
+{
+    if (light.shape == LightShape::Disk) {
+        const Vec3 d = concentric_disk(a, b) * (0.5 * light.width);
+        return light.center + frame.s * d.x + frame.t * d.y;
+    }
+    return light.center + frame.s * ((a - 0.5) * light.width) + frame.t * ((b - 0.5) * light.height);
+}
+
+}  // namespace
+
+double light_visibility(const PreparedScene& prepared, const AreaLight& light, Vec3 position, Vec3 normal,
+                        int strata, std::uint64_t stream)
+{
+    const Basis frame = basis_looking_along(light.normal, light.up);
+    if (dot(position - light.center, frame.n) <= 0) return 0;
+    const Vec3 origin = position + normal * (kNormalOffset * (1 + max_abs_component(position)));
+    // Hash the stream name into the starting state: SplitMix64 walks its state
+    // in steps of a fixed constant, so two raw names a multiple of that step
+    // apart would give overlapping (shifted) sequences.
+    SplitMix64 random(SplitMix64(stream).next());
+    int visible = 0;
+    for (int j = 0; j < strata; ++j)
+        for (int i = 0; i < strata; ++i) {
+            const double a = (i + random.uniform()) / strata, b = (j + random.uniform()) / strata;
+            // Direction to the light point unnormalised: t in (0, 1) spans the segment.
+            const Ray ray{origin, light_point(light, frame, a, b) - origin};
+            visible += prepared.occluded(ray, 0.0, 1.0) ? 0 : 1;
+        }
+    return double(visible) / (double(strata) * strata);
+}
+
+}  // namespace penumbra::reference

@@ -1,0 +1,168 @@
+// The scene model: built-in scenes by name, JSON round trips, and errors that
+// name the offending field.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "penumbra/error.h"
+#include "penumbra/reference_scene.h"
+
+namespace penumbra::reference {
+namespace {
+
+// Runs `f`, expects an Error of `category` whose message contains `fragment`.
+template <class F>
+void expect_error(F&& f, ErrorCategory category, const std::string& fragment)
+{
+    try {
+        f();
+        ADD_FAILURE() << "expected an Error containing \"" << fragment << "\"";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.category(), category) << e.what();
+        EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+}
+
+// A small valid scene as JSON text, with `primitives` spliced in.
+std::string scene_text(const std::string& primitives)
+{
+    return R"({
+      "name": "t",
+      "light": {"shape": "rectangle", "center": [0, 5, 0], "normal": [0, -1, 0], "size": [1, 1]},
+      "light_camera": {"projection": "perspective", "near": 0.5, "far": 10, "fov_degrees": 60},
+      "view": {"position": [0, 3, 4], "target": [0, 0, 0], "fov_degrees": 45},
+      "primitives": )" + primitives + "}";
+}
+
+const std::string kThreePrimitives = R"([
+  {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]},
+  {"type": "box", "center": [0, 1, 0], "size": [1, 0.1, 1]},
+  {"type": "sphere", "center": [1, 1, 0], "radius": 0.5}])";
+
+TEST(ReferenceScene, BuiltinNamesAreTheFiveFailureModes)
+{
+    const std::vector<std::string> expected = {"contact", "overlap", "fence", "grazing", "large"};
+    EXPECT_EQ(builtin_scene_names(), expected);
+    for (const std::string& name : builtin_scene_names()) {
+        const Scene scene = builtin_scene(name);
+        EXPECT_EQ(scene.name, name);
+        EXPECT_FALSE(scene.description.empty());
+        EXPECT_NO_THROW(validate_scene(scene, "test")) << name;
+    }
+    EXPECT_EQ(builtin_scene("large").map_size, 16384);
+}
+
+TEST(ReferenceScene, UnknownBuiltinNamesTheValidOnes)
+{
+    expect_error([] { builtin_scene("contcat"); }, ErrorCategory::InvalidArgument,
+                 "contact, overlap, fence, grazing, large");
+}
+
+TEST(ReferenceScene, JsonRoundTripOfEveryBuiltinIsExact)
+{
+    for (const std::string& name : builtin_scene_names()) {
+        const Scene scene = builtin_scene(name);
+        const std::string text = scene_to_json(scene);
+        const Scene back = scene_from_json(text);
+        EXPECT_EQ(scene_to_json(back), text) << name;
+        ASSERT_EQ(back.primitives.size(), scene.primitives.size());
+        EXPECT_EQ(back.light.center, scene.light.center);
+        EXPECT_EQ(back.view.position, scene.view.position);
+        EXPECT_EQ(back.light_camera.fov_degrees, scene.light_camera.fov_degrees);
+    }
+}
+
+TEST(ReferenceScene, FileRoundTripKeepsDiskLightAndOrthographicCamera)
+{
+    Scene scene = builtin_scene("contact");
+    scene.light.shape = LightShape::Disk;
+    scene.light.width = scene.light.height = 0.7;
+    scene.light_camera.projection = Projection::Orthographic;
+    scene.light_camera.extent = 12.5;
+    scene.primitives.push_back(Box{{1, 2, 3}, {0.1, 0.2, 0.3}, {10, 20, 30}});
+    const auto path = std::filesystem::temp_directory_path() / "penumbra_reference_scene_test.json";
+    save_scene(scene, path);
+    const Scene back = load_scene(path);
+    std::filesystem::remove(path);
+    EXPECT_EQ(back.light.shape, LightShape::Disk);
+    EXPECT_EQ(back.light.width, 0.7);
+    EXPECT_EQ(back.light_camera.projection, Projection::Orthographic);
+    EXPECT_EQ(back.light_camera.extent, 12.5);
+    const Box& box = std::get<Box>(back.primitives.back());
+    EXPECT_EQ(box.rotation_degrees, (Vec3{10, 20, 30}));
+    EXPECT_EQ(scene_to_json(back), scene_to_json(scene));
+}
+
+TEST(ReferenceScene, OptionalFieldsTakeTheirDefaults)
+{
+    const Scene scene = scene_from_json(scene_text(kThreePrimitives));
+    EXPECT_EQ(scene.map_size, 1024);
+    EXPECT_EQ(scene.view.up, (Vec3{0, 1, 0}));
+    EXPECT_EQ(std::get<Box>(scene.primitives[1]).rotation_degrees, (Vec3{0, 0, 0}));
+}
+
+TEST(ReferenceScene, BadFieldsAreNamed)
+{
+    const auto load = [](const std::string& primitives) {
+        return [primitives] { scene_from_json(scene_text(primitives), "bad.json"); };
+    };
+    const auto invalid = ErrorCategory::InvalidArgument;
+    expect_error(load(R"([{"type": "plane", "point": [0,0,0], "normal": [0,1,0]},
+                          {"type": "box", "center": [0,1,0], "size": [1,1,1]},
+                          {"type": "sphere", "center": [1,1,0], "radius": -0.5}])"),
+                 invalid, "bad.json: primitives[2].radius: must be > 0");
+    expect_error(load(R"([{"type": "sphere", "center": [1,1,0]}])"), invalid, "primitives[0].radius: missing");
+    expect_error(load(R"([{"type": "sphere", "center": [1,1], "radius": 1}])"), invalid,
+                 "primitives[0].center: must be an array of 3 numbers");
+    expect_error(load(R"([{"type": "sphere", "center": [1,1,0], "radius": "big"}])"), invalid,
+                 "primitives[0].radius: must be a number");
+    expect_error(load(R"([{"type": "cone", "center": [1,1,0]}])"), invalid,
+                 "primitives[0].type: must be one of plane, sphere, box, capsule");
+    expect_error(load(R"([{"type": "sphere", "center": [1,1,0], "radius": 1, "radus": 2}])"), invalid,
+                 "primitives[0].radus: unknown field");
+    expect_error(load(R"([{"type": "box", "center": [0,1,0], "size": [1,0,1]}])"), invalid,
+                 "primitives[0].size[1]: must be > 0");
+    expect_error(load(R"([{"type": "plane", "point": [0,0,0], "normal": [0,0,0]}])"), invalid,
+                 "primitives[0].normal: must be a non-zero vector");
+    expect_error(load("[]"), invalid, "primitives: must hold at least one primitive");
+    expect_error(load("{}"), invalid, "primitives: must be an array");
+}
+
+TEST(ReferenceScene, BadLightAndCameraFieldsAreNamed)
+{
+    const auto invalid = ErrorCategory::InvalidArgument;
+    std::string text = scene_text(kThreePrimitives);
+    auto with = [&](const std::string& from, const std::string& to) {
+        std::string changed = text;
+        const auto at = changed.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        changed.replace(at, from.size(), to);
+        return [changed] { scene_from_json(changed); };
+    };
+    expect_error(with(R"("far": 10)", R"("far": 0.2)"), invalid, "light_camera.far: must be > light_camera.near");
+    expect_error(with(R"("fov_degrees": 60)", R"("fov_degrees": 180)"), invalid,
+                 "light_camera.fov_degrees: must be in (0, 179)");
+    expect_error(with(R"("projection": "perspective")", R"("projection": "fisheye")"), invalid,
+                 "light_camera.projection: must be \"perspective\" or \"orthographic\"");
+    expect_error(with(R"("size": [1, 1])", R"("size": [1, -1])"), invalid, "light.size[1]: must be > 0");
+    expect_error(with(R"("shape": "rectangle")", R"("shape": "disk")"), invalid, "light.size: unknown field");
+    expect_error(with(R"("target": [0, 0, 0])", R"("target": [0, 3, 4])"), invalid,
+                 "view.target: must differ from view.position");
+    expect_error(with(R"("name": "t",)", R"("name": "t", "map_size": 0,)"), invalid, "map_size: must be in");
+}
+
+TEST(ReferenceScene, UnreadableOrMalformedFilesAreIoErrors)
+{
+    expect_error([] { load_scene("/nonexistent/penumbra/scene.json"); }, ErrorCategory::Io,
+                 "/nonexistent/penumbra/scene.json: cannot open");
+    expect_error([] { scene_from_json("{ \"name\": ", "broken.json"); }, ErrorCategory::Io,
+                 "broken.json: not valid JSON");
+    expect_error([] { scene_from_json("[1, 2]", "list.json"); }, ErrorCategory::InvalidArgument,
+                 "list.json: (document): must be a JSON object");
+}
+
+}  // namespace
+}  // namespace penumbra::reference
