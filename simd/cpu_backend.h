@@ -1,4 +1,6 @@
 // The CPU backend (SIMD and Scalar): the schedule around simd/cpu_kernels.
+// One class; each kernel family implements its methods in its own file
+// (simd/cpu_<family>.cpp), next to its launches.
 #pragma once
 
 #include <memory>
@@ -7,6 +9,23 @@
 #include "simd/cpu_kernels.h"
 
 namespace penumbra::cpu {
+
+class CpuBackend final : public detail::BackendImpl {
+public:
+    explicit CpuBackend(const CpuKernels& kernels) : k_(kernels) {}
+
+    std::string description() const override;
+    std::string isa() const override { return k_.isa; }
+
+    // simd/cpu_moment_table.cpp
+    void build_moment_table(const Image& depth, MomentTable& table) override;
+    // simd/cpu_chebyshev.cpp
+    void chebyshev(detail::ChebyshevMethod method, const MomentTable& table, const Image& receivers,
+                   const ChebyshevParams& params, Image& out) override;
+
+private:
+    const CpuKernels& k_;
+};
 
 std::unique_ptr<detail::BackendImpl> make_cpu_backend(const CpuKernels& kernels);
 

@@ -67,19 +67,29 @@ static void sat_block_exact_fenced(const float* depth, u32* table, u32* carry, u
 
 namespace penumbra::cpu {
 namespace isa = PN_ISA_NAMESPACE;
+
+// Filled by name, not by position, so that each kernel family adds its own
+// lines without caring about the others' order.
+static constexpr CpuKernels make_table()
+{
+    CpuKernels t{};
+    t.isa = PN_ISA_LABEL;
+    t.lanes = isa::kLanes;
+    t.sat_block_float = &isa::sat_block_float_fenced;
+    t.sat_block_exact = &isa::sat_block_exact_fenced;
+    t.sat_bands_float = &isa::sat_bands_float;
+    t.sat_bands_exact = &isa::sat_bands_exact;
+    t.sat_join_bands_float = &isa::sat_join_bands_float;
+    t.sat_join_bands_exact = &isa::sat_join_bands_exact;
+    t.vsm_float = &isa::vsm_float;
+    t.vsm_exact = &isa::vsm_exact;
+    t.vssm_float = &isa::vssm_float;
+    t.vssm_exact = &isa::vssm_exact;
+    return t;
+}
+
 extern const CpuKernels PN_TABLE_NAME;
-const CpuKernels PN_TABLE_NAME = {
-    PN_ISA_LABEL,
-    isa::kLanes,
-    &isa::sat_block_float_fenced,
-    &isa::sat_block_exact_fenced,
-    &isa::sat_bands_float,
-    &isa::sat_bands_exact,
-    &isa::sat_join_bands_float,
-    &isa::sat_join_bands_exact,
-    &isa::vsm_float,
-    &isa::vsm_exact,
-    &isa::vssm_float,
-    &isa::vssm_exact,
-};
+// constinit: other translation units read the tables during their static
+// initialisation (test registration), so they must not wait for dynamic init.
+constinit const CpuKernels PN_TABLE_NAME = make_table();
 }  // namespace penumbra::cpu

@@ -1,0 +1,31 @@
+// OpenCL launches of the Chebyshev lookups (kernels/vsm.h, kernels/vssm.h).
+#include "cl/opencl_backend.h"
+
+namespace penumbra::cl_backend {
+
+void OpenClBackend::chebyshev(detail::ChebyshevMethod method, const MomentTable& table, const Image& receivers,
+                              const ChebyshevParams& p, Image& out)
+{
+    translate_cl_errors([&] {
+        const cl::Context& ctx = runtime_.context();
+        const bool exact = table.precision() == Precision::Exact;
+        const bool vsm = method == detail::ChebyshevMethod::Vsm;
+        const char* name = vsm ? (exact ? "vsm_exact" : "vsm_float") : (exact ? "vssm_exact" : "vssm_float");
+
+        cl::Buffer storage = wrap(ctx, table.storage(), table.storage_elements() * 4, CL_MEM_READ_ONLY);
+        cl::Buffer origin = table_origin(storage, table, CL_MEM_READ_ONLY);
+        cl::Buffer rx = wrap(ctx, receivers.plane(0), image_bytes(receivers), CL_MEM_READ_ONLY);
+        cl::Buffer result = wrap(ctx, out.plane(0), image_bytes(out), CL_MEM_WRITE_ONLY);
+
+        cl::Kernel& k = kernel(name);
+        k.setArg(0, origin);
+        k.setArg(1, rx);
+        k.setArg(2, result);
+        k.setArg(3, sizeof(ChebyshevParams), &p);
+        k.setArg(4, 0);
+        launch_pixels(runtime_.queue(), k, out.width(), out.height());
+        sync_to_host(runtime_.queue(), result, image_bytes(out));
+    });
+}
+
+}  // namespace penumbra::cl_backend
