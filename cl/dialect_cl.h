@@ -63,6 +63,9 @@ PN_FN void pn_ustore_stream(global uint* plane, pn_dims d, int x, int y, uint v)
 PN_FN uint pn_ugather(global const uint* ptr, int index) { return ptr[index]; }
 
 #define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); ++x)
+/* Many work-items may raise the same flag; all write the same value, 1. */
+PN_FN void pn_flag_any(global int* flags, int i, int m) { if (m) flags[i] = 1; }
+PN_FN int pn_finite(float v) { return v - v == 0.0f; }
 PN_FN float pn_scan_add(float v) { return v; }
 PN_FN float pn_last(float v) { return v; }
 PN_FN uint pn_uscan_add(uint v) { return v; }

@@ -36,10 +36,10 @@ public:
     double program_build_seconds() const override { return build_seconds_; }
 
     // cl/opencl_moment_table.cpp
-    void build_moment_table(const Image& depth, MomentTable& table) override;
+    void build_moment_table(const Image& depth, MomentTable& table, int* bad_rows) override;
     // cl/opencl_chebyshev.cpp
     void chebyshev(detail::ChebyshevMethod method, const MomentTable& table, const Image& receivers,
-                   const ChebyshevParams& params, Image& out) override;
+                   const ChebyshevParams& params, Image& out, int* bad_rows) override;
 
 private:
     cl::Kernel& kernel(const char* name) { return kernels_.at(name); }

@@ -8,7 +8,7 @@ namespace {
 constexpr int kBandHeight = 32;
 }
 
-void OpenClBackend::build_moment_table(const Image& depth, MomentTable& table)
+void OpenClBackend::build_moment_table(const Image& depth, MomentTable& table, int* bad_rows)
 {
     translate_cl_errors([&] {
         const cl::Context& ctx = runtime_.context();
@@ -28,14 +28,17 @@ void OpenClBackend::build_moment_table(const Image& depth, MomentTable& table)
         cl::Buffer origin = table_origin(storage, table, CL_MEM_READ_WRITE);
         cl::Buffer carry = zeros(ctx, std::size_t(depth.height()) * p.moments * 4);
         cl::Buffer columns = zeros(ctx, std::size_t(p.columns.plane_pitch) * p.moments * 4);
+        const std::size_t flag_bytes = std::size_t(depth.height()) * sizeof(int);
+        cl::Buffer flags = wrap(ctx, bad_rows, flag_bytes, CL_MEM_READ_WRITE);
 
         cl::Kernel& scan = kernel(exact ? "sat_bands_exact" : "sat_bands_float");
         scan.setArg(0, depth_buf);
         scan.setArg(1, origin);
         scan.setArg(2, carry);
         scan.setArg(3, columns);
-        scan.setArg(4, sizeof(SatParams), &p);
-        scan.setArg(5, bands);
+        scan.setArg(4, flags);
+        scan.setArg(5, sizeof(SatParams), &p);
+        scan.setArg(6, bands);
         queue.enqueueNDRangeKernel(scan, cl::NullRange, cl::NDRange(std::size_t(bands)));
 
         cl::Kernel& join = kernel(exact ? "sat_join_bands_exact" : "sat_join_bands_float");
@@ -45,6 +48,7 @@ void OpenClBackend::build_moment_table(const Image& depth, MomentTable& table)
         join.setArg(3, 0);
         launch_pixels(queue, join, depth.width(), depth.height());
         sync_to_host(queue, storage, table_bytes);
+        sync_to_host(queue, flags, flag_bytes);
     });
 }
 

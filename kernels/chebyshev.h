@@ -31,6 +31,22 @@ PN_FN Receiver load_receiver(PN_GLOBAL const float* receivers, pn_dims d, int x,
     return r;
 }
 
+/* load_receiver that also flags the row when u, v or z is NaN or infinite
+ * (before clamping, which would hide a NaN differently on each backend). */
+PN_FN Receiver load_checked_receiver(PN_GLOBAL const float* receivers, pn_dims d, int x, int y,
+                                     PN_GLOBAL int* bad_rows)
+{
+    const pn_float u = pn_load(PN_PLANE(receivers, d, 0), d, x, y);
+    const pn_float v = pn_load(PN_PLANE(receivers, d, 1), d, x, y);
+    const pn_float z = pn_load(PN_PLANE(receivers, d, 2), d, x, y);
+    pn_flag_any(bad_rows, y, pn_not(pn_and(pn_and(pn_finite(u), pn_finite(v)), pn_finite(z))));
+    Receiver r;
+    r.u = pn_clamp(u, 0.0f, 1.0f);
+    r.v = pn_clamp(v, 0.0f, 1.0f);
+    r.z = z;
+    return r;
+}
+
 PN_FN pn_float chebyshev_upper_bound(DepthMoments m, pn_float z, float min_variance)
 {
     const pn_float variance = pn_max(m.mean_sq - m.mean * m.mean, min_variance);

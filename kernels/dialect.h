@@ -52,6 +52,11 @@
  *   pn_last(v)                      every lane gets the value of the last lane
  *   pn_last_value(v)                the last lane's value as a uniform float
  *   pn_uscan_add, pn_ulast, pn_ulast_value   the same, wrapping, for pn_uint
+ * Input checks (a kernel validates the values it reads, so that checking
+ * costs no extra pass over memory; the host reports the first bad value)
+ *   pn_flag_any(flags, i, mask)     sets flags[i] to 1 if any lane of mask is set
+ *   pn_finite(v)                    the lanes whose value is neither NaN nor infinite
+ *
  *
  * Entry shapes (the bindings expand them)
  *   Per pixel: PN_KERNEL void name(<buffers>, const Params p, PN_PIXEL_ARGS)

@@ -35,22 +35,31 @@
 
 /* ---- build ------------------------------------------------------------- */
 
+/* Depths the table cannot take: outside [0, 1], NaN and infinities included. */
+PN_FN pn_mask sat_depth_outside(pn_float z)
+{
+    return pn_not(pn_and(z >= 0.0f, z <= 1.0f));
+}
+
 /* Scans rows [y0, y1) of columns [x0, x1) of the depth map into the float table.
  * x0 and x1 - x0 are multiples of every lane count (64), or x1 is the width.
  * `carry` holds, per moment and row, the row's sum left of x0 (updated to x1);
- * row `column_row` of `columns` holds the column sums above y0 (updated to y1). */
-PN_FN void sat_block_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
-                           PN_GLOBAL float* carry, PN_GLOBAL float* columns, int column_row,
-                           const SatParams p, int x0, int x1, int y0, int y1)
+ * row `column_row` of `columns` holds the column sums above y0 (updated to y1).
+ * A depth outside [0, 1] (NaN and infinities included) sets bad_rows[y]. */
+PN_FN void sat_rows_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
+                          PN_GLOBAL float* carry, PN_GLOBAL float* columns, int column_row,
+                          PN_GLOBAL int* bad_rows, const SatParams p, int moments, int x0, int x1, int y0, int y1)
 {
     for (int y = y0; y < y1; ++y) {
         pn_float row_sum[4];
-        for (int k = 0; k < p.moments; ++k) row_sum[k] = carry[k * p.depth.height + y];
+        for (int k = 0; k < moments; ++k) row_sum[k] = carry[k * p.depth.height + y];
+        pn_mask bad = sat_depth_outside(0.0f);
         PN_FOR_STRIPS(x, x0, x1)
         {
             const pn_float z = pn_load(depth, p.depth, x, y);
+            bad = pn_or(bad, sat_depth_outside(z));
             pn_float m = z;
-            for (int k = 0; k < p.moments; ++k) {
+            for (int k = 0; k < moments; ++k) {
                 PN_GLOBAL float* column = PN_PLANE(columns, p.columns, k);
                 const pn_float row_prefix = pn_scan_add(m) + row_sum[k];
                 const pn_float sum = pn_load(column, p.columns, x, column_row) + row_prefix;
@@ -60,8 +69,21 @@ PN_FN void sat_block_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
                 m = m * z;
             }
         }
-        for (int k = 0; k < p.moments; ++k) carry[k * p.depth.height + y] = pn_last_value(row_sum[k]);
+        for (int k = 0; k < moments; ++k) carry[k * p.depth.height + y] = pn_last_value(row_sum[k]);
+        pn_flag_any(bad_rows, y, bad);
     }
+}
+
+/* The moment count as a literal lets the compiler unroll the per-moment loop
+ * and keep the row sums in registers (measured: docs/moment_table.md). */
+PN_FN void sat_block_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
+                           PN_GLOBAL float* carry, PN_GLOBAL float* columns, int column_row,
+                           PN_GLOBAL int* bad_rows, const SatParams p, int x0, int x1, int y0, int y1)
+{
+    if (p.moments == 2)
+        sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, 2, x0, x1, y0, y1);
+    else
+        sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, 4, x0, x1, y0, y1);
 }
 
 /* Exact moments of one strip: m_1 = q = round(z * 65535), m_{k+1} =
@@ -71,19 +93,21 @@ PN_FN pn_uint sat_exact_next_moment(pn_uint m, pn_uint q)
     return pn_ushr(m * q + (pn_uint)32768u, 16);
 }
 
-PN_FN void sat_block_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
-                           PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
-                           const SatParams p, int x0, int x1, int y0, int y1)
+PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
+                          PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
+                          PN_GLOBAL int* bad_rows, const SatParams p, int moments, int x0, int x1, int y0, int y1)
 {
     for (int y = y0; y < y1; ++y) {
         pn_uint row_sum[4];
-        for (int k = 0; k < p.moments; ++k) row_sum[k] = carry[k * p.depth.height + y];
+        for (int k = 0; k < moments; ++k) row_sum[k] = carry[k * p.depth.height + y];
+        pn_mask bad = sat_depth_outside(0.0f);
         PN_FOR_STRIPS(x, x0, x1)
         {
             const pn_float z = pn_load(depth, p.depth, x, y);
+            bad = pn_or(bad, sat_depth_outside(z));
             const pn_uint q = pn_float_to_uint(pn_floor(z * PN_EXACT_STEPS + 0.5f));
             pn_uint m = q;
-            for (int k = 0; k < p.moments; ++k) {
+            for (int k = 0; k < moments; ++k) {
                 PN_GLOBAL uint* column = PN_PLANE(columns, p.columns, k);
                 const pn_uint row_prefix = pn_uscan_add(m) + row_sum[k];
                 const pn_uint sum = pn_uload(column, p.columns, x, column_row) + row_prefix;
@@ -93,30 +117,43 @@ PN_FN void sat_block_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                 m = sat_exact_next_moment(m, q);
             }
         }
-        for (int k = 0; k < p.moments; ++k) carry[k * p.depth.height + y] = pn_ulast_value(row_sum[k]);
+        for (int k = 0; k < moments; ++k) carry[k * p.depth.height + y] = pn_ulast_value(row_sum[k]);
+        pn_flag_any(bad_rows, y, bad);
     }
+}
+
+/* The moment count as a literal lets the compiler unroll the per-moment loop
+ * and keep the row sums in registers (measured: docs/moment_table.md). */
+PN_FN void sat_block_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
+                           PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
+                           PN_GLOBAL int* bad_rows, const SatParams p, int x0, int x1, int y0, int y1)
+{
+    if (p.moments == 2)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, x0, x1, y0, y1);
+    else
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, x0, x1, y0, y1);
 }
 
 /* Banded schedule, pass 1: band `pn_task` of `band_height` rows becomes a
  * table of its own (zero carries, zero columns in row `pn_task` of `columns`). */
 PN_KERNEL void sat_bands_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table, PN_GLOBAL float* carry,
-                               PN_GLOBAL float* columns, const SatParams p, PN_TASK_ARGS)
+                               PN_GLOBAL float* columns, PN_GLOBAL int* bad_rows, const SatParams p, PN_TASK_ARGS)
 {
     const int bands = (p.depth.height + p.band_height - 1) / p.band_height;
     PN_TASK_BEGIN(bands);
     const int y0 = pn_task * p.band_height;
     const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;
-    sat_block_float(depth, table, carry, columns, pn_task, p, 0, p.depth.width, y0, y1);
+    sat_block_float(depth, table, carry, columns, pn_task, bad_rows, p, 0, p.depth.width, y0, y1);
 }
 
 PN_KERNEL void sat_bands_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table, PN_GLOBAL uint* carry,
-                               PN_GLOBAL uint* columns, const SatParams p, PN_TASK_ARGS)
+                               PN_GLOBAL uint* columns, PN_GLOBAL int* bad_rows, const SatParams p, PN_TASK_ARGS)
 {
     const int bands = (p.depth.height + p.band_height - 1) / p.band_height;
     PN_TASK_BEGIN(bands);
     const int y0 = pn_task * p.band_height;
     const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;
-    sat_block_exact(depth, table, carry, columns, pn_task, p, 0, p.depth.width, y0, y1);
+    sat_block_exact(depth, table, carry, columns, pn_task, bad_rows, p, 0, p.depth.width, y0, y1);
 }
 
 /* Banded schedule, pass 2, per pixel: adds the column totals of every band

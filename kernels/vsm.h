@@ -29,20 +29,20 @@ PN_FN TexelWindow texel_window(pn_dims t, pn_float u, pn_float v, int radius)
 }
 
 PN_KERNEL void vsm_float(PN_GLOBAL const float* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
-                         const ChebyshevParams p, PN_PIXEL_ARGS)
+                         PN_GLOBAL int* bad_rows, const ChebyshevParams p, PN_PIXEL_ARGS)
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const Receiver r = load_receiver(receivers, p.receivers, pn_x, pn_y);
+    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
     const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);
     const DepthMoments m = box_moments_float(table, p.table, w.x0, w.x1, w.y0, w.y1);
     pn_store(out, p.out, pn_x, pn_y, chebyshev_visibility(m, r.z, p.min_variance, p.bleed));
 }
 
 PN_KERNEL void vsm_exact(PN_GLOBAL const uint* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
-                         const ChebyshevParams p, PN_PIXEL_ARGS)
+                         PN_GLOBAL int* bad_rows, const ChebyshevParams p, PN_PIXEL_ARGS)
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const Receiver r = load_receiver(receivers, p.receivers, pn_x, pn_y);
+    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
     const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);
     const DepthMoments m = box_moments_exact(table, p.table, w.x0, w.x1, w.y0, w.y1);
     pn_store(out, p.out, pn_x, pn_y, chebyshev_visibility(m, r.z, p.min_variance, p.bleed));

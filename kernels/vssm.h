@@ -58,10 +58,10 @@ PN_FN FractionalWindow vssm_filter_window(const ChebyshevParams p, Receiver r, p
 }
 
 PN_KERNEL void vssm_float(PN_GLOBAL const float* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
-                          const ChebyshevParams p, PN_PIXEL_ARGS)
+                          PN_GLOBAL int* bad_rows, const ChebyshevParams p, PN_PIXEL_ARGS)
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const Receiver r = load_receiver(receivers, p.receivers, pn_x, pn_y);
+    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
     pn_mask lit;
     const DepthMoments search = fractional_moments_float(table, p.table, vssm_search_window(p, r));
     const pn_float z_occ = vssm_blocker_depth(search, r.z, p.min_variance, &lit);
@@ -71,10 +71,10 @@ PN_KERNEL void vssm_float(PN_GLOBAL const float* table, PN_GLOBAL const float* r
 }
 
 PN_KERNEL void vssm_exact(PN_GLOBAL const uint* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
-                          const ChebyshevParams p, PN_PIXEL_ARGS)
+                          PN_GLOBAL int* bad_rows, const ChebyshevParams p, PN_PIXEL_ARGS)
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const Receiver r = load_receiver(receivers, p.receivers, pn_x, pn_y);
+    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
     pn_mask lit;
     const DepthMoments search = fractional_moments_exact(table, p.table, vssm_search_window(p, r));
     const pn_float z_occ = vssm_blocker_depth(search, r.z, p.min_variance, &lit);

@@ -18,10 +18,10 @@ public:
     std::string isa() const override { return k_.isa; }
 
     // simd/cpu_moment_table.cpp
-    void build_moment_table(const Image& depth, MomentTable& table) override;
+    void build_moment_table(const Image& depth, MomentTable& table, int* bad_rows) override;
     // simd/cpu_chebyshev.cpp
     void chebyshev(detail::ChebyshevMethod method, const MomentTable& table, const Image& receivers,
-                   const ChebyshevParams& params, Image& out) override;
+                   const ChebyshevParams& params, Image& out, int* bad_rows) override;
 
 private:
     const CpuKernels& k_;

@@ -5,7 +5,7 @@
 namespace penumbra::cpu {
 
 void CpuBackend::chebyshev(detail::ChebyshevMethod method, const MomentTable& table, const Image& receivers,
-                           const ChebyshevParams& p, Image& out)
+                           const ChebyshevParams& p, Image& out, int* bad_rows)
 {
     const bool vsm = method == detail::ChebyshevMethod::Vsm;
     const float* rx = receivers.plane(0);
@@ -13,11 +13,11 @@ void CpuBackend::chebyshev(detail::ChebyshevMethod method, const MomentTable& ta
     if (table.precision() == Precision::Float) {
         auto* kernel = vsm ? k_.vsm_float : k_.vssm_float;
         for_each_strip(out.width(), out.height(), k_.lanes,
-                       [&](int x, int y) { kernel(table.float_origin(), rx, result, p, x, y); });
+                       [&](int x, int y) { kernel(table.float_origin(), rx, result, bad_rows, p, x, y); });
     } else {
         auto* kernel = vsm ? k_.vsm_exact : k_.vssm_exact;
         for_each_strip(out.width(), out.height(), k_.lanes,
-                       [&](int x, int y) { kernel(table.exact_origin(), rx, result, p, x, y); });
+                       [&](int x, int y) { kernel(table.exact_origin(), rx, result, bad_rows, p, x, y); });
     }
 }
 

@@ -1,7 +1,9 @@
 // The CPU function tables: the kernel descriptions compiled once per ISA
 // (simd/cpu_kernels.cpp), each table holding the same entry points.
 //
-// Entries are the descriptions' own functions. Pixel kernels take the strip's
+// Entries are the descriptions' own functions. `int*` arguments are per-row
+// flags that kernels raise for input values they cannot take (see
+// pn_flag_any in kernels/dialect.h). Pixel kernels take the strip's
 // first pixel (x, y) last; the schedule (simd/cpu_backend.cpp) walks strips of
 // `lanes` pixels. Task kernels take their task index last.
 #pragma once
@@ -21,18 +23,18 @@ struct CpuKernels {
     int lanes;        // pixels per strip
 
     // The wavefront schedule's block (not an entry point of the registry).
-    void (*sat_block_float)(const float*, float*, float*, float*, int, SatParams, int, int, int, int);
-    void (*sat_block_exact)(const float*, u32*, u32*, u32*, int, SatParams, int, int, int, int);
+    void (*sat_block_float)(const float*, float*, float*, float*, int, int*, SatParams, int, int, int, int);
+    void (*sat_block_exact)(const float*, u32*, u32*, u32*, int, int*, SatParams, int, int, int, int);
 
     // Entry points, in the order of kernels/registry.h.
-    void (*sat_bands_float)(const float*, float*, float*, float*, SatParams, int task);
-    void (*sat_bands_exact)(const float*, u32*, u32*, u32*, SatParams, int task);
+    void (*sat_bands_float)(const float*, float*, float*, float*, int*, SatParams, int task);
+    void (*sat_bands_exact)(const float*, u32*, u32*, u32*, int*, SatParams, int task);
     void (*sat_join_bands_float)(float*, const float*, SatParams, int x, int y);
     void (*sat_join_bands_exact)(u32*, const u32*, SatParams, int x, int y);
-    void (*vsm_float)(const float*, const float*, float*, ChebyshevParams, int x, int y);
-    void (*vsm_exact)(const u32*, const float*, float*, ChebyshevParams, int x, int y);
-    void (*vssm_float)(const float*, const float*, float*, ChebyshevParams, int x, int y);
-    void (*vssm_exact)(const u32*, const float*, float*, ChebyshevParams, int x, int y);
+    void (*vsm_float)(const float*, const float*, float*, int*, ChebyshevParams, int x, int y);
+    void (*vsm_exact)(const u32*, const float*, float*, int*, ChebyshevParams, int x, int y);
+    void (*vssm_float)(const float*, const float*, float*, int*, ChebyshevParams, int x, int y);
+    void (*vssm_exact)(const u32*, const float*, float*, int*, ChebyshevParams, int x, int y);
 };
 
 extern const CpuKernels kernels_scalar;

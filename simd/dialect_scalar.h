@@ -38,10 +38,16 @@ PN_FN bool pn_all(bool m) { return m; }
 PN_FN std::int32_t pn_imin(std::int32_t a, std::int32_t b) { return a < b ? a : b; }
 PN_FN std::int32_t pn_imax(std::int32_t a, std::int32_t b) { return a > b ? a : b; }
 PN_FN std::int32_t pn_iclamp(std::int32_t v, std::int32_t lo, std::int32_t hi) { return pn_imin(pn_imax(v, lo), hi); }
-PN_FN std::int32_t pn_to_int(float v) { return static_cast<std::int32_t>(v); }
+// Out of range (and NaN) gives INT32_MIN, as the SIMD conversion instructions
+// do, instead of C++'s undefined behaviour: kernels may meet such values in
+// inputs they flag as bad.
+PN_FN std::int32_t pn_to_int(float v)
+{
+    return v >= -2147483648.0f && v < 2147483648.0f ? static_cast<std::int32_t>(v) : INT32_MIN;
+}
 PN_FN float pn_int_to_float(std::int32_t v) { return static_cast<float>(v); }
 PN_FN float pn_uint_to_float(std::uint32_t v) { return static_cast<float>(v); }
-PN_FN std::uint32_t pn_float_to_uint(float v) { return static_cast<std::uint32_t>(static_cast<std::int32_t>(v)); }
+PN_FN std::uint32_t pn_float_to_uint(float v) { return static_cast<std::uint32_t>(pn_to_int(v)); }
 PN_FN std::uint32_t pn_ushr(std::uint32_t v, int n) { return v >> n; }
 
 #define PN_PLANE(ptr, dims, c) ((ptr) + (std::size_t)(c) * (std::size_t)(dims).plane_pitch)
@@ -63,6 +69,13 @@ PN_FN void pn_ustore_stream(std::uint32_t* plane, pn_dims d, int x, int y, std::
 PN_FN std::uint32_t pn_ugather(const std::uint32_t* ptr, std::int32_t index) { return ptr[index]; }
 
 #define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); ++x)
+// Many lanes (threads) may raise the same flag; only ones are written, but the
+// store is atomic so that the race is defined.
+PN_FN void pn_flag_any(int* flags, int i, bool m)
+{
+    if (m) std::atomic_ref<int>(flags[i]).store(1, std::memory_order_relaxed);
+}
+PN_FN bool pn_finite(float v) { return v - v == 0.0f; }
 PN_FN float pn_scan_add(float v) { return v; }
 PN_FN float pn_last(float v) { return v; }
 PN_FN std::uint32_t pn_uscan_add(std::uint32_t v) { return v; }

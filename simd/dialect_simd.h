@@ -174,6 +174,15 @@ PN_FN pn_batch_of<T> pn_broadcast_last(pn_batch_of<T> v)
     return xsimd::swizzle(v, xsimd::make_batch_constant<index_batch, pn_last_index<T>>());
 }
 
+// Many strips (threads) may raise the same flag; only ones are written, but
+// the store is atomic so that the race is defined.
+PN_FN void pn_flag_any(int* flags, int i, pn_mask m)
+{
+    if (xsimd::any(m)) std::atomic_ref<int>(flags[i]).store(1, std::memory_order_relaxed);
+}
+// v - v is 0 for finite v and NaN for NaN and infinities.
+PN_FN pn_mask pn_finite(pn_float v) { return (v - v) == 0.0f; }
+
 #define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); x += kLanes)
 PN_FN pn_float pn_scan_add(pn_float v) { return pn_scan_add_from<float>(v); }
 PN_FN pn_float pn_last(pn_float v) { return pn_broadcast_last<float>(v); }

@@ -20,11 +20,15 @@ public:
     virtual std::string isa() const { return {}; }
     virtual double program_build_seconds() const { return 0.0; }
 
-    // Fills `table` (allocated, zeroed) from `depth`.
-    virtual void build_moment_table(const Image& depth, MomentTable& table) = 0;
-    // `params` has every field set but the image geometries' pointers.
+    // Kernels check the values they read: `bad_rows` (one int per row of the
+    // input they check, zeroed) gets a 1 for every row holding a value the
+    // kernel cannot take; the host then finds and reports the first one.
+
+    // Fills `table` from `depth`; bad_rows: per depth row.
+    virtual void build_moment_table(const Image& depth, MomentTable& table, int* bad_rows) = 0;
+    // `params` is complete; bad_rows: per receiver row.
     virtual void chebyshev(ChebyshevMethod method, const MomentTable& table, const Image& receivers,
-                           const ChebyshevParams& params, Image& out) = 0;
+                           const ChebyshevParams& params, Image& out, int* bad_rows) = 0;
 };
 
 pn_dims dims_of(const Image& image);

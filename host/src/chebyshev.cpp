@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "backend.h"
 #include "penumbra/error.h"
@@ -17,7 +18,17 @@ void check_receivers(const std::string& op, const MomentTable& table, const Imag
     require(!receivers.empty(), op, "the receivers image is empty (0 pixels)");
     require(receivers.channels() == 3, op,
             "receivers must have 3 channels (u, v, z), got " + std::to_string(receivers.channels()));
-    require_finite(receivers, op, "the receivers image");
+}
+
+// Runs a lookup; the kernel flags rows with NaN or infinite receivers, and the
+// first one is then reported (the output is left unspecified).
+void run_checked(Context& context, detail::ChebyshevMethod method, const std::string& op, const MomentTable& table,
+                 const Image& receivers, const ChebyshevParams& p, Image& out)
+{
+    std::vector<int> bad_rows(std::size_t(receivers.height()), 0);
+    context.impl().chebyshev(method, table, receivers, p, out, bad_rows.data());
+    if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end())
+        require_finite(receivers, op, "the receivers image");
 }
 
 void check_filter(const std::string& op, float min_variance, float bleed)
@@ -78,7 +89,7 @@ void vsm(Context& context, const MomentTable& table, const Image& receivers, con
     check_output(op, receivers, out);
     ChebyshevParams p = base_params(table, receivers, out, options.min_variance, options.bleed);
     p.radius = options.radius;
-    context.impl().chebyshev(detail::ChebyshevMethod::Vsm, table, receivers, p, out);
+    run_checked(context, detail::ChebyshevMethod::Vsm, op, table, receivers, p, out);
 }
 
 void vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options, Image& out)
@@ -104,7 +115,7 @@ void vssm(Context& context, const MomentTable& table, const Image& receivers, co
     ChebyshevParams p = base_params(table, receivers, out, options.min_variance, options.bleed);
     p.light_size = options.light_size;
     p.max_radius = max_radius;
-    context.impl().chebyshev(detail::ChebyshevMethod::Vssm, table, receivers, p, out);
+    run_checked(context, detail::ChebyshevMethod::Vssm, op, table, receivers, p, out);
 }
 
 }  // namespace penumbra

@@ -1,6 +1,8 @@
 #include "penumbra/moment_table.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <string>
 
 #include "backend.h"
@@ -80,14 +82,19 @@ double MomentTable::box_sum(int k, int x0, int x1, int y0, int y1) const
     return (corner(x1, y1) - corner(x0, y1)) - (corner(x1, y0) - corner(x0, y0));
 }
 
-static void check_depth_map(const Image& depth)
+static void check_depth_map_shape(const Image& depth)
 {
     const std::string op = "build_moment_table";
     require(!depth.empty(), op, "the shadow map is empty (0 pixels)");
     require(depth.channels() == 1, op,
             "the shadow map must have one channel (depth), got " + std::to_string(depth.channels()));
-    // One pass in the common case: [0, 1] excludes NaN and infinities too.
-    if (channel_within(depth, 0, 0.0f, 1.0f)) return;
+}
+
+// The kernels flag rows with depths outside [0, 1]; this finds and reports the
+// first one. Only runs when a row was flagged.
+static void report_bad_depth(const Image& depth)
+{
+    const std::string op = "build_moment_table";
     require_finite(depth, op, "the shadow map");
     for (int y = 0; y < depth.height(); ++y)
         for (int x = 0; x < depth.width(); ++x) {
@@ -100,23 +107,32 @@ static void check_depth_map(const Image& depth)
         }
 }
 
+// Builds, then reports the first bad depth if a kernel flagged one. The table
+// is then incomplete, but the caller gets the error instead of it.
+static void build_checked(Context& context, const Image& depth, MomentTable& table)
+{
+    std::vector<int> bad_rows(std::size_t(depth.height()), 0);
+    context.impl().build_moment_table(depth, table, bad_rows.data());
+    if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end()) report_bad_depth(depth);
+}
+
 MomentTable build_moment_table(Context& context, const Image& depth, int moments, Precision precision)
 {
-    check_depth_map(depth);
+    check_depth_map_shape(depth);
     MomentTable table(depth.width(), depth.height(), moments, precision);
-    context.impl().build_moment_table(depth, table);
+    build_checked(context, depth, table);
     return table;
 }
 
 void build_moment_table(Context& context, const Image& depth, MomentTable& table)
 {
-    check_depth_map(depth);
+    check_depth_map_shape(depth);
     require(!table.empty() && table.width() == depth.width() && table.height() == depth.height(),
             "build_moment_table", "the table is " + std::to_string(table.width()) + "x" +
                                       std::to_string(table.height()) + " but the map is " +
                                       std::to_string(depth.width()) + "x" + std::to_string(depth.height()) +
                                       "; allocate it as MomentTable(width, height, moments, precision)");
-    context.impl().build_moment_table(depth, table);
+    build_checked(context, depth, table);
 }
 
 std::string to_string(Precision precision) { return precision == Precision::Exact ? "exact" : "float"; }

@@ -33,7 +33,7 @@ Image vsm(Context& context, const MomentTable& table, const Image& receivers, co
 Image vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options);
 
 // The same into an existing 1-channel image of the receivers' size: no
-// allocation, for per-frame use.
+// allocation, for per-frame use. If they throw, `out` is left unspecified.
 void vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options, Image& out);
 void vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options, Image& out);
 

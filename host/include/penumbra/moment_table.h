@@ -68,7 +68,8 @@ MomentTable build_moment_table(Context& context, const Image& depth, int moments
                                Precision precision = Precision::Exact);
 
 // The same into an existing table of the map's size (its moments and
-// precision are kept): no allocation, for per-frame use.
+// precision are kept): no allocation, for per-frame use. If it throws (a bad
+// depth), the table's contents are unspecified.
 void build_moment_table(Context& context, const Image& depth, MomentTable& table);
 
 std::string to_string(Precision precision);
