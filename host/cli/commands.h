@@ -5,10 +5,24 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/image.h"
+#include "penumbra/reference_render.h"
 namespace penumbra::cli {
 
 int info_command(const std::vector<std::string>& args);
 int shade_command(const std::vector<std::string>& args);
 int example_command(const std::vector<std::string>& args);
 
+int render_scene_command(const std::vector<std::string>& args);
+int demo_command(const std::vector<std::string>& args);
+
+// Shared by render-scene and demo.
+struct ViewSize {
+    int width = 0, height = 0;
+};
+ViewSize parse_view_size(const std::string& text);  // "WxH"
+int strata_for_samples(int samples);                // n such that n^2 ~ samples
+// The receivers as one image with the channels of kReceiverChannels.
+extern const std::vector<std::string> kReceiverChannels;
+Image pack_receivers(const reference::Receivers& receivers);
 }  // namespace penumbra::cli

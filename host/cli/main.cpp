@@ -20,6 +20,9 @@ const char* kUsage =
     "  shade --method vsm|vssm --shadow-map SM.exr --receivers RX.exr --out OUT.exr [options]\n"
     "                              filter a shadow map for a set of receivers (shade --help)\n"
     "  example --out DIR           write a small synthetic shadow map and receivers to DIR\n"
+    "  render-scene NAME --shadow-map SM.exr --receivers RX.exr --truth GT.exr [options]\n"
+    "                              a reference scene and its ray-traced ground truth\n"
+    "  demo [--quick] [--out DIR]  every method on every scene: images, CSV, time-vs-error chart\n"
     "\n"
     "Environment: PENUMBRA_BACKEND=auto|simd|opencl|scalar overrides Auto;\n"
     "PENUMBRA_SIMD_ISA=sse4.2|avx2|avx512 forces an ISA.\n";
@@ -46,6 +49,8 @@ int main(int argc, char** argv)
         if (command == "info") return penumbra::cli::info_command(args);
         if (command == "shade") return penumbra::cli::shade_command(args);
         if (command == "example") return penumbra::cli::example_command(args);
+        if (command == "render-scene") return penumbra::cli::render_scene_command(args);
+        if (command == "demo") return penumbra::cli::demo_command(args);
         std::cerr << "penumbra: unknown command '" << command << "' (see penumbra --help)\n";
         return 2;
     } catch (const penumbra::cli::UsageError& e) {

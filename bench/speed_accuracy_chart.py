@@ -1,0 +1,68 @@
+#!/usr/bin/python3
+"""Chart of time against error from `penumbra demo`'s CSV.
+
+usage: speed_accuracy_chart.py results.csv chart.png
+
+One panel per scene: x = milliseconds per megapixel of receivers (log),
+y = RMSE against the ray-traced ground truth; one colour per method, a dot
+per setting, and each method's Pareto front (the settings no other setting of
+the same method beats on both time and error) joined by a line.
+Needs matplotlib (Debian's python3-matplotlib, for /usr/bin/python3).
+"""
+import csv
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def pareto_front(points):
+    """Points (time, error) not dominated by another, sorted by time."""
+    front, best = [], float("inf")
+    for t, e in sorted(points):
+        if e < best:
+            front.append((t, e))
+            best = e
+    return front
+
+
+def main(csv_path, png_path):
+    rows = list(csv.DictReader(open(csv_path, newline="")))
+    scenes = sorted({r["scene"] for r in rows}, key=[r["scene"] for r in rows].index)
+    methods = sorted({r["method"] for r in rows}, key=[r["method"] for r in rows].index)
+    colours = {m: plt.cm.tab10(i % 10) for i, m in enumerate(methods)}
+    columns = min(3, len(scenes))
+    lines = (len(scenes) + columns - 1) // columns
+    fig, axes = plt.subplots(lines, columns, figsize=(5.2 * columns, 4.2 * lines), squeeze=False)
+    for ax in axes.flat[len(scenes):]:
+        ax.set_visible(False)
+    for ax, scene in zip(axes.flat, scenes):
+        points = defaultdict(list)
+        for r in rows:
+            if r["scene"] == scene:
+                points[r["method"]].append((float(r["ms_per_mpix"]), float(r["rmse"])))
+        for method, pts in points.items():
+            xs, ys = zip(*pts)
+            ax.scatter(xs, ys, color=colours[method], s=18, label=method)
+            front = pareto_front(pts)
+            ax.plot([p[0] for p in front], [p[1] for p in front], color=colours[method], lw=1.2)
+        ax.set_xscale("log")
+        ax.set_title(scene)
+        ax.set_xlabel("ms per megapixel of receivers")
+        ax.set_ylabel("RMSE vs ground truth")
+        ax.grid(True, which="both", alpha=0.3)
+    handles = [plt.Line2D([], [], color=colours[m], marker="o", lw=1.2, label=m) for m in methods]
+    fig.legend(handles=handles, loc="lower center", ncol=min(len(methods), 6), frameon=False)
+    backend = rows[0]["backend"] if rows else ""
+    fig.suptitle(f"penumbra: time against error ({backend})")
+    fig.tight_layout(rect=(0, 0.06, 1, 0.97))
+    fig.savefig(png_path, dpi=110)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2])
