@@ -44,6 +44,9 @@ PN_FN float pn_int_to_float(int v) { return (float)v; }
 PN_FN float pn_uint_to_float(uint v) { return (float)v; }
 PN_FN uint pn_float_to_uint(float v) { return (uint)(int)v; }
 PN_FN uint pn_ushr(uint v, int n) { return v >> n; }
+PN_FN uint pn_ushl(uint v, int n) { return v << n; }
+PN_FN uint pn_as_uint(float v) { return as_uint(v); }
+PN_FN float pn_as_float(uint v) { return as_float(v); }
 
 #define PN_PLANE(ptr, dims, c) ((ptr) + (size_t)(c) * (size_t)(dims).plane_pitch)
 
@@ -57,15 +60,19 @@ PN_FN float pn_fetch(global const float* plane, pn_dims d, int x, int y)
 {
     return plane[pn_index(d, pn_iclamp(x, 0, d.width - 1), pn_iclamp(y, 0, d.height - 1))];
 }
+PN_FN float pn_load_clamped(global const float* plane, pn_dims d, int x, int y) { return pn_fetch(plane, d, x, y); }
+PN_FN int pn_strips_inside(pn_dims d, int x0, int x1) { return x0 >= 0 && x1 < d.width; }
+PN_FN float pn_load_inside(global const float* plane, pn_dims d, int x, int y) { return plane[pn_index(d, x, y)]; }
 PN_FN uint pn_uload(global const uint* plane, pn_dims d, int x, int y) { return x < d.width ? plane[pn_index(d, x, y)] : 0u; }
 PN_FN void pn_ustore(global uint* plane, pn_dims d, int x, int y, uint v) { if (x < d.width) plane[pn_index(d, x, y)] = v; }
 PN_FN void pn_ustore_stream(global uint* plane, pn_dims d, int x, int y, uint v) { pn_ustore(plane, d, x, y, v); }
 PN_FN uint pn_ugather(global const uint* ptr, int index) { return ptr[index]; }
 
-#define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); ++x)
 /* Many work-items may raise the same flag; all write the same value, 1. */
 PN_FN void pn_flag_any(global int* flags, int i, int m) { if (m) flags[i] = 1; }
 PN_FN int pn_finite(float v) { return v - v == 0.0f; }
+
+#define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); ++x)
 PN_FN float pn_scan_add(float v) { return v; }
 PN_FN float pn_last(float v) { return v; }
 PN_FN uint pn_uscan_add(uint v) { return v; }

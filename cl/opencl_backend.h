@@ -40,6 +40,15 @@ public:
     // cl/opencl_chebyshev.cpp
     void chebyshev(detail::ChebyshevMethod method, const MomentTable& table, const Image& receivers,
                    const ChebyshevParams& params, Image& out, int* bad_rows) override;
+    // cl/opencl_bilateral.cpp
+    void cross_bilateral(const Image& mask, const Image& guide, const Image* normals, const std::vector<int>& taps,
+                         const std::vector<float>& weights, bool separable, const BilateralParams& params, Image& out,
+                         int* bad_rows) override;
+    // cl/opencl_sdf.cpp
+    void sdf_grid(const float* data, std::size_t floats, const Image& positions, const Image& normals,
+                  const SdfParams& params, Image& out, int* bad_rows) override;
+    void sdf_analytic(const float* data, std::size_t floats, const Image& positions, const Image& normals,
+                      const SdfParams& params, Image& out, int* bad_rows) override;
 
 private:
     cl::Kernel& kernel(const char* name) { return kernels_.at(name); }

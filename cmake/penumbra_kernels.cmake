@@ -12,6 +12,8 @@ set(PENUMBRA_KERNEL_FILES
   kernels/chebyshev.h
   kernels/vsm.h
   kernels/vssm.h
+  kernels/bilateral.h
+  kernels/sdf.h
 )
 
 set(_gen ${CMAKE_CURRENT_BINARY_DIR}/generated)

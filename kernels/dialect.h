@@ -23,7 +23,8 @@
  *
  * Arithmetic and math (float lanes; `pn_i...` for pn_int, `pn_u...` for pn_uint)
  *   + - * / and comparisons as usual; pn_min pn_max pn_clamp pn_abs pn_sqrt
- *   pn_floor pn_ceil pn_fma (the only fused operation: contraction is off
+ *   pn_floor pn_ceil pn_fma (the only fused operation, on every ISA with FMA;
+ *   SSE4.2 has none and rounds twice; contraction is off
  *   everywhere else) pn_exp pn_log
  *   pn_select(mask, if_true, if_false) instead of a branch on a lane value
  *   pn_and pn_or pn_not on masks; pn_any(mask), pn_all(mask) give a uniform
@@ -31,6 +32,9 @@
  *   pn_to_int(f) truncates; pn_int_to_float; pn_uint_to_float (exact rounding
  *   over the whole uint32 range); pn_float_to_uint(f) for f in [0, 2^31);
  *   pn_ushr(u, n) logical shift right by a uniform count.
+ *   pn_ushl(u, n) shift left by a uniform count (wrapping, as all unsigned
+ *   arithmetic); pn_as_uint(f) and pn_as_float(u) reinterpret the 32 bits of
+ *   a lane (OpenCL's as_uint / as_float), for exponent-field arithmetic.
  *
  * Memory (images are planes described by a pn_dims, see kernels/params.h)
  *   PN_PLANE(ptr, dims, c)          pointer to plane c
@@ -42,9 +46,26 @@
  *                                   read again soon (non-temporal on SIMD)
  *   pn_fetch(plane, dims, x, y)     per-lane coordinates, clamp-to-edge: the one
  *                                   boundary helper
+ *   pn_load_clamped(plane, dims, x, y)  the strip at uniform (x, y), clamp-to-edge:
+ *                                   lane i reads column clamp(x + i, 0, width - 1)
+ *                                   of row clamp(y, 0, height - 1); x and y may lie
+ *                                   outside the image. A uniform-offset tap (a
+ *                                   filter's neighbour at pn_x + dx): one
+ *                                   contiguous load unless the strip crosses an edge
+ *   pn_strips_inside(dims, x0, x1)  uniform: every lane of the strips starting at
+ *                                   x0 .. x1 lies in [0, width) (x0 >= 0 and the
+ *                                   strip at x1 ends within the row)
+ *   pn_load_inside(plane, dims, x, y)  the strip at (x, y) with no check at all:
+ *                                   for strips pn_strips_inside vouched for, with
+ *                                   0 <= y < height (a filter's interior fast path)
  *   pn_gather(ptr, index)           per-lane element index; the caller guarantees
  *                                   it is in bounds (every lane, active or not)
  *   pn_uload pn_ustore pn_ustore_stream pn_ugather  the same for uint data
+ *
+ * Input checks (a kernel validates the values it reads, so that checking
+ * costs no extra pass over memory; the host reports the first bad value)
+ *   pn_flag_any(flags, i, mask)     sets flags[i] to 1 if any lane of mask is set
+ *   pn_finite(v)                    the lanes whose value is neither NaN nor infinite
  *
  * Row scans (for kernels that walk a row strip by strip)
  *   PN_FOR_STRIPS(x, begin, end)    for (x = begin; x < end; x += lane count)
@@ -52,11 +73,6 @@
  *   pn_last(v)                      every lane gets the value of the last lane
  *   pn_last_value(v)                the last lane's value as a uniform float
  *   pn_uscan_add, pn_ulast, pn_ulast_value   the same, wrapping, for pn_uint
- * Input checks (a kernel validates the values it reads, so that checking
- * costs no extra pass over memory; the host reports the first bad value)
- *   pn_flag_any(flags, i, mask)     sets flags[i] to 1 if any lane of mask is set
- *   pn_finite(v)                    the lanes whose value is neither NaN nor infinite
- *
  *
  * Entry shapes (the bindings expand them)
  *   Per pixel: PN_KERNEL void name(<buffers>, const Params p, PN_PIXEL_ARGS)

@@ -47,6 +47,61 @@ typedef struct {
     float exact_scale;      /* exact tables: 1 / 65535 (depth per quantization step) */
 } ChebyshevParams;
 
+/* Cross-bilateral filter of a mask guided by depth (kernels/bilateral.h). The
+ * window's taps (offsets and spatial weights) are buffers the host computes
+ * once per call. */
+typedef struct {
+    pn_dims mask;          /* 1 to 4 planes: the values filtered */
+    pn_dims guide;         /* one plane: depth */
+    pn_dims normals;       /* 3 planes (x, y, z) when use_normals, else unused */
+    pn_dims out;           /* as many planes as the mask */
+    pn_dims pass;          /* separable: the horizontal pass's rows, planes as the mask */
+    int channels;          /* 1 to 4 */
+    int radius;            /* every tap offset lies in [-radius, radius] */
+    int taps;              /* taps in the window (per pass, separable) */
+    int threshold;         /* 1: hard rejection; 0: Gaussian range weight */
+    int relative;          /* 1: depth differences divided by |centre depth| */
+    int use_normals;       /* 1: normals weigh too */
+    int pass_first_row;    /* separable: the image row held by row 0 of `pass` */
+    float depth_scale;     /* Gaussian: sqrt(log2(e) / 2) / sigma_d, so w = 2^-(d depth_scale)^2 */
+    float depth_threshold; /* threshold: the largest accepted |difference| */
+    float normal_scale;    /* log2(e) / (2 sigma_n^2) */
+} BilateralParams;
+
+/* Sphere-traced SDF soft shadows (kernels/sdf.h). Analytic primitives are one
+ * float buffer of records grouped by kind, in this order, each kind's count
+ * below (world units; host: host/src/sdf_scene.cpp packs them):
+ *   plane   4 floats: unit normal n (3), offset: the solid dot(p, n) <= offset
+ *   sphere  4 floats: centre (3), radius
+ *   box    16 floats: centre (3), half size (3), the box's local x, y, z axes
+ *                     in world space (3 x 3, unit), 1 unused
+ *   capsule 8 floats: a (3), b - a (3), 1 / |b - a|^2 (0 when a = b), radius */
+#define PN_SDF_PLANE_FLOATS 4
+#define PN_SDF_SPHERE_FLOATS 4
+#define PN_SDF_BOX_FLOATS 16
+#define PN_SDF_CAPSULE_FLOATS 8
+#define PN_SDF_CLASSIC 0  /* estimate: k h / t */
+#define PN_SDF_IMPROVED 1 /* estimate: k d / (t - y), two-step closest approach */
+typedef struct {
+    pn_dims receivers;       /* 3 planes: world x, y, z */
+    pn_dims normals;         /* 3 planes: unit normals (read when normal_offset != 0) */
+    pn_dims out;             /* plane 0 visibility; plane 1 steps when write_steps */
+    int grid_nx, grid_ny, grid_nz;  /* grid: nodes per axis (>= 2), x fastest */
+    int planes, spheres, boxes, capsules;  /* analytic: records of each kind */
+    int max_steps;           /* distance evaluations per ray (>= 1) */
+    int estimate;            /* PN_SDF_CLASSIC or PN_SDF_IMPROVED */
+    int light_is_direction;  /* 1: light_* is the unit direction to the light */
+    int write_steps;         /* 1: out plane 1 gets each ray's distance evaluations */
+    float light_x, light_y, light_z;  /* the light's centre, or the direction */
+    float k;                 /* hardness (> 0): 1 / k is the safe angle counted as lit */
+    float k_per_distance;    /* > 0, a light at a point: k = this x the receiver's distance to it */
+    float t_min, t_max;      /* march interval along the ray (world units) */
+    float hit_epsilon;       /* a distance below this is a hit (> 0) */
+    float normal_offset;     /* receivers lifted along their normals (world units) */
+    float grid_x, grid_y, grid_z;  /* grid: world position of node (0, 0, 0) */
+    float voxel, inv_voxel;  /* grid: node spacing and its reciprocal */
+} SdfParams;
+
 #ifdef __cplusplus
 }  /* namespace penumbra */
 #endif

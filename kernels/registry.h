@@ -14,6 +14,11 @@
     X(vsm_float)              \
     X(vsm_exact)              \
     X(vssm_float)             \
-    X(vssm_exact)
+    X(vssm_exact)             \
+    X(bilateral_full)         \
+    X(bilateral_horizontal)   \
+    X(bilateral_vertical)     \
+    X(sdf_grid)               \
+    X(sdf_analytic)
 
 #endif

@@ -22,6 +22,15 @@ public:
     // simd/cpu_chebyshev.cpp
     void chebyshev(detail::ChebyshevMethod method, const MomentTable& table, const Image& receivers,
                    const ChebyshevParams& params, Image& out, int* bad_rows) override;
+    // simd/cpu_bilateral.cpp
+    void cross_bilateral(const Image& mask, const Image& guide, const Image* normals, const std::vector<int>& taps,
+                         const std::vector<float>& weights, bool separable, const BilateralParams& params, Image& out,
+                         int* bad_rows) override;
+    // simd/cpu_sdf.cpp
+    void sdf_grid(const float* data, std::size_t floats, const Image& positions, const Image& normals,
+                  const SdfParams& params, Image& out, int* bad_rows) override;
+    void sdf_analytic(const float* data, std::size_t floats, const Image& positions, const Image& normals,
+                      const SdfParams& params, Image& out, int* bad_rows) override;
 
 private:
     const CpuKernels& k_;

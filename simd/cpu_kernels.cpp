@@ -6,6 +6,7 @@
 #include <immintrin.h>
 
 #include <atomic>
+
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -86,6 +87,14 @@ static constexpr CpuKernels make_table()
     t.vsm_exact = &isa::vsm_exact;
     t.vssm_float = &isa::vssm_float;
     t.vssm_exact = &isa::vssm_exact;
+    t.bilateral_full = &isa::bilateral_full;
+    t.bilateral_horizontal = &isa::bilateral_horizontal;
+    t.bilateral_vertical = &isa::bilateral_vertical;
+    t.bilateral_full_span = &isa::bilateral_full_span;
+    t.bilateral_horizontal_span = &isa::bilateral_horizontal_span;
+    t.bilateral_vertical_span = &isa::bilateral_vertical_span;
+    t.sdf_grid = &isa::sdf_grid;
+    t.sdf_analytic = &isa::sdf_analytic;
     return t;
 }
 

@@ -35,6 +35,22 @@ struct CpuKernels {
     void (*vsm_exact)(const u32*, const float*, float*, int*, ChebyshevParams, int x, int y);
     void (*vssm_float)(const float*, const float*, float*, int*, ChebyshevParams, int x, int y);
     void (*vssm_exact)(const u32*, const float*, float*, int*, ChebyshevParams, int x, int y);
+    void (*bilateral_full)(const float*, const float*, const float*, const int*, const float*, float*, int*,
+                           BilateralParams, int x, int y);
+    void (*bilateral_horizontal)(const float*, const float*, const float*, const int*, const float*, float*, int*,
+                                 BilateralParams, int x, int y);
+    void (*bilateral_vertical)(const float*, const float*, const float*, const int*, const float*, float*,
+                               BilateralParams, int x, int y);
+    // The SIMD schedule's spans of kernels/bilateral.h (not registry entries):
+    // the strips from x0 to x1 of rows [y0, y1).
+    void (*bilateral_full_span)(const float*, const float*, const float*, const int*, const float*, float*, int*,
+                                BilateralParams, int x0, int x1, int y0, int y1);
+    void (*bilateral_horizontal_span)(const float*, const float*, const float*, const int*, const float*, float*,
+                                      int*, BilateralParams, int x0, int x1, int y0, int y1);
+    void (*bilateral_vertical_span)(const float*, const float*, const float*, const int*, const float*, float*,
+                                    BilateralParams, int x0, int x1, int y0, int y1);
+    void (*sdf_grid)(const float*, const float*, const float*, float*, int*, SdfParams, int x, int y);
+    void (*sdf_analytic)(const float*, const float*, const float*, float*, int*, SdfParams, int x, int y);
 };
 
 extern const CpuKernels kernels_scalar;

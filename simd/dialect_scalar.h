@@ -49,6 +49,19 @@ PN_FN float pn_int_to_float(std::int32_t v) { return static_cast<float>(v); }
 PN_FN float pn_uint_to_float(std::uint32_t v) { return static_cast<float>(v); }
 PN_FN std::uint32_t pn_float_to_uint(float v) { return static_cast<std::uint32_t>(pn_to_int(v)); }
 PN_FN std::uint32_t pn_ushr(std::uint32_t v, int n) { return v >> n; }
+PN_FN std::uint32_t pn_ushl(std::uint32_t v, int n) { return v << n; }
+PN_FN std::uint32_t pn_as_uint(float v)
+{
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    return bits;
+}
+PN_FN float pn_as_float(std::uint32_t v)
+{
+    float value;
+    std::memcpy(&value, &v, sizeof value);
+    return value;
+}
 
 #define PN_PLANE(ptr, dims, c) ((ptr) + (std::size_t)(c) * (std::size_t)(dims).plane_pitch)
 
@@ -62,13 +75,15 @@ PN_FN float pn_fetch(const float* plane, pn_dims d, std::int32_t x, std::int32_t
 {
     return plane[pn_index(d, pn_iclamp(x, 0, d.width - 1), pn_iclamp(y, 0, d.height - 1))];
 }
+PN_FN float pn_load_clamped(const float* plane, pn_dims d, int x, int y) { return pn_fetch(plane, d, x, y); }
+PN_FN bool pn_strips_inside(pn_dims d, int x0, int x1) { return x0 >= 0 && x1 < d.width; }
+PN_FN float pn_load_inside(const float* plane, pn_dims d, int x, int y) { return plane[pn_index(d, x, y)]; }
 
 PN_FN std::uint32_t pn_uload(const std::uint32_t* plane, pn_dims d, int x, int y) { return x < d.width ? plane[pn_index(d, x, y)] : 0u; }
 PN_FN void pn_ustore(std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t v) { if (x < d.width) plane[pn_index(d, x, y)] = v; }
 PN_FN void pn_ustore_stream(std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t v) { pn_ustore(plane, d, x, y, v); }
 PN_FN std::uint32_t pn_ugather(const std::uint32_t* ptr, std::int32_t index) { return ptr[index]; }
 
-#define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); ++x)
 // Many lanes (threads) may raise the same flag; only ones are written, but the
 // store is atomic so that the race is defined.
 PN_FN void pn_flag_any(int* flags, int i, bool m)
@@ -76,6 +91,8 @@ PN_FN void pn_flag_any(int* flags, int i, bool m)
     if (m) std::atomic_ref<int>(flags[i]).store(1, std::memory_order_relaxed);
 }
 PN_FN bool pn_finite(float v) { return v - v == 0.0f; }
+
+#define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); ++x)
 PN_FN float pn_scan_add(float v) { return v; }
 PN_FN float pn_last(float v) { return v; }
 PN_FN std::uint32_t pn_uscan_add(std::uint32_t v) { return v; }

@@ -27,7 +27,18 @@ PN_FN pn_float pn_abs(pn_float v) { return xsimd::abs(v); }
 PN_FN pn_float pn_sqrt(pn_float v) { return xsimd::sqrt(v); }
 PN_FN pn_float pn_floor(pn_float v) { return xsimd::floor(v); }
 PN_FN pn_float pn_ceil(pn_float v) { return xsimd::ceil(v); }
-PN_FN pn_float pn_fma(pn_float a, pn_float b, pn_float c) { return xsimd::fma(a, b, c); }
+// Fused where the ISA has FMA, as std::fma (scalar) and OpenCL's fma are.
+// xsimd 8.1 has no AVX-512 fma: its generic fallback would round twice. SSE4.2
+// has no FMA instruction: there it is a multiply and an add (the one ISA on
+// which pn_fma rounds twice; tests state their tolerance for it).
+PN_FN pn_float pn_fma(pn_float a, pn_float b, pn_float c)
+{
+#if defined(PN_ISA_avx512)
+    return _mm512_fmadd_ps(a, b, c);
+#else
+    return xsimd::fma(a, b, c);
+#endif
+}
 PN_FN pn_float pn_exp(pn_float v) { return xsimd::exp(v); }
 PN_FN pn_float pn_log(pn_float v) { return xsimd::log(v); }
 PN_FN pn_float pn_select(pn_mask m, pn_float a, pn_float b) { return xsimd::select(m, a, b); }
@@ -43,6 +54,9 @@ PN_FN pn_int pn_iclamp(pn_int v, pn_int lo, pn_int hi) { return pn_imin(pn_imax(
 PN_FN pn_int pn_to_int(pn_float v) { return xsimd::batch_cast<std::int32_t>(v); }
 PN_FN pn_float pn_int_to_float(pn_int v) { return xsimd::batch_cast<float>(v); }
 PN_FN pn_uint pn_ushr(pn_uint v, int n) { return v >> n; }
+PN_FN pn_uint pn_ushl(pn_uint v, int n) { return v << n; }
+PN_FN pn_uint pn_as_uint(pn_float v) { return xsimd::bitwise_cast<pn_uint>(v); }
+PN_FN pn_float pn_as_float(pn_uint v) { return xsimd::bitwise_cast<pn_float>(v); }
 // uint32 -> float with one rounding, like a scalar conversion: both halves are
 // exact in float, so only the final addition rounds.
 PN_FN pn_float pn_uint_to_float(pn_uint v)
@@ -137,6 +151,38 @@ PN_FN pn_float pn_fetch(const float* plane, pn_dims d, pn_int x, pn_int y)
     const pn_int cx = pn_iclamp(x, pn_int(0), pn_int(d.width - 1));
     const pn_int cy = pn_iclamp(y, pn_int(0), pn_int(d.height - 1));
     return pn_gather(plane, cy * d.pitch + cx);
+}
+// Lane i holds i: the column offsets of a strip's pixels.
+PN_FN pn_int pn_int_lane_offsets()
+{
+    alignas(64) std::int32_t offsets[kLanes];
+    for (int i = 0; i < kLanes; ++i) offsets[i] = i;
+    return pn_int::load_aligned(offsets);
+}
+// Clamp-to-edge strip: one unaligned load when the strip lies inside the
+// image (the hot path of a filter's taps, kept small so that it stays in the
+// tap loop); a strip that crosses an edge (the first and last strips of a row,
+// the rows above and below) takes the out-of-line path, which gathers its
+// clamped columns.
+[[gnu::noinline, gnu::cold]] static pn_float pn_load_clamped_edge(const float* plane, pn_dims d, int x, int y)
+{
+    const int cy = y < 0 ? 0 : (y >= d.height ? d.height - 1 : y);
+    const float* row = plane + std::size_t(cy) * std::size_t(d.pitch);
+    if (x >= 0 && x <= d.width - kLanes) return pn_float::load_unaligned(row + x);
+    const pn_int columns = pn_iclamp(pn_int(x) + pn_int_lane_offsets(), pn_int(0), pn_int(d.width - 1));
+    return pn_gather(row, columns);
+}
+PN_FN bool pn_strips_inside(pn_dims d, int x0, int x1) { return x0 >= 0 && x1 <= d.width - kLanes; }
+PN_FN pn_float pn_load_inside(const float* plane, pn_dims d, int x, int y)
+{
+    return pn_float::load_unaligned(plane + std::size_t(y) * std::size_t(d.pitch) + std::size_t(x));
+}
+PN_FN pn_float pn_load_clamped(const float* plane, pn_dims d, int x, int y)
+{
+    // Unsigned compares: a negative x or y wraps high and fails them.
+    if (unsigned(y) < unsigned(d.height) && unsigned(x) <= unsigned(d.width - kLanes) && d.width >= kLanes)
+        return pn_float::load_unaligned(plane + std::size_t(y) * std::size_t(d.pitch) + std::size_t(x));
+    return pn_load_clamped_edge(plane, d, x, y);
 }
 
 // Inclusive prefix sum across lanes: log2(lanes) steps of "shift up by k lanes

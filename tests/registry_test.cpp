@@ -53,9 +53,10 @@ constexpr int registry_size()
     return n;
 }
 
-// isa, lanes, the two wavefront block functions, then one pointer per entry.
+// isa, lanes, the two wavefront block functions, then one pointer per entry,
+// then the three spans of the bilateral filter.
 static_assert(sizeof(cpu::CpuKernels) ==
-                  offsetof(cpu::CpuKernels, sat_block_float) + (2 + registry_size()) * sizeof(void (*)()),
+                  offsetof(cpu::CpuKernels, sat_block_float) + (5 + registry_size()) * sizeof(void (*)()),
               "CpuKernels has a member that kernels/registry.h lacks (or the reverse)");
 
 std::vector<std::string> cpu_tables()

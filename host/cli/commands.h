@@ -7,12 +7,12 @@
 
 #include "penumbra/image.h"
 #include "penumbra/reference_render.h"
+
 namespace penumbra::cli {
 
 int info_command(const std::vector<std::string>& args);
 int shade_command(const std::vector<std::string>& args);
 int example_command(const std::vector<std::string>& args);
-
 int render_scene_command(const std::vector<std::string>& args);
 int demo_command(const std::vector<std::string>& args);
 
@@ -25,4 +25,6 @@ int strata_for_samples(int samples);                // n such that n^2 ~ samples
 // The receivers as one image with the channels of kReceiverChannels.
 extern const std::vector<std::string> kReceiverChannels;
 Image pack_receivers(const reference::Receivers& receivers);
+int blur_command(const std::vector<std::string>& args);  // host/cli/bilateral_command.cpp
+
 }  // namespace penumbra::cli

@@ -242,10 +242,10 @@ void draw_chart(const fs::path& out)
 
 void print_summary(const std::vector<Row>& rows)
 {
-    std::printf("%-8s %-6s %-11s %9s %7s %7s %7s %8s %7s\n", "scene", "method", "settings", "ms/Mpix", "RMSE", "p99",
+    std::printf("%-8s %-12s %-11s %9s %7s %7s %7s %8s %7s\n", "scene", "method", "settings", "ms/Mpix", "RMSE", "p99",
                 "leak", "overdark", "flicker");
     for (const Row& r : rows)
-        std::printf("%-8s %-6s %-11s %9.2f %7.4f %7.4f %7.4f %8.4f %7.4f\n", r.scene.c_str(), r.method.c_str(),
+        std::printf("%-8s %-12s %-11s %9.2f %7.4f %7.4f %7.4f %8.4f %7.4f\n", r.scene.c_str(), r.method.c_str(),
                     r.setting.c_str(), r.ms_per_mpix, r.rmse, r.p99, r.leak, r.overdark, r.flicker);
 }
 

@@ -5,10 +5,14 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 
+#include "penumbra/bilateral.h"
 #include "penumbra/chebyshev.h"
 #include "penumbra/moment_table.h"
 #include "penumbra/reference_light_space.h"
+#include "penumbra/sdf.h"
+#include "penumbra/sdf_scene.h"
 
 namespace penumbra::cli {
 namespace {
@@ -52,11 +56,72 @@ DemoMethod vssm_method(const reference::Scene& scene, int map_size)
     return m;
 }
 
+// Distance-field shadows trace the scene itself, not the shadow map: the
+// grid is what an engine bakes offline, so it is baked once per scene (not
+// timed) at a node budget that grows with the demo's map size; the analytic
+// form evaluates the primitives in the kernel. k comes from the light's size
+// (sdf_options_for); the sweep is the estimate and half / double that k.
+DemoMethod sdf_method(const reference::Scene& scene, int map_size, bool analytic)
+{
+    DemoMethod m{analytic ? "sdf-analytic" : "sdf", {}, 0};
+    const std::size_t nodes = map_size >= 1024 ? kSdfGridNodes : kSdfGridNodes / 8;
+    auto grid = analytic ? nullptr : std::make_shared<DistanceGrid>(bake_distance_grid(scene, nodes));
+    auto primitives = std::make_shared<AnalyticScene>(scene.primitives);
+    struct Variant {
+        const char* label;
+        SdfEstimate estimate;
+        float k_scale;
+    };
+    for (Variant v : {Variant{"classic", SdfEstimate::Classic, 1.0f}, Variant{"improved", SdfEstimate::Improved, 1.0f},
+                      Variant{"classic k/2", SdfEstimate::Classic, 0.5f},
+                      Variant{"classic 2k", SdfEstimate::Classic, 2.0f}}) {
+        m.settings.push_back({v.label, [grid, primitives, v](Context& ctx, const DemoFrame& f) {
+                                  SdfOptions o = sdf_options_for(f.scene, v.estimate);
+                                  o.k *= v.k_scale;
+                                  const reference::Receivers& r = f.receivers;
+                                  return grid ? sdf_shadows(ctx, *grid, r.world_position, &r.normal, o)
+                                              : sdf_shadows(ctx, *primitives, r.world_position, &r.normal, o);
+                              }});
+    }
+    return m;
+}
+
+// The screen-space cross-bilateral blur of a deferred renderer, guided by
+// the view depth (relative differences suit perspective depth), applied to
+// the noisiest estimates: small VSM windows alias, and distance-field
+// shadows band. The blur's cost is in the time; the chart shows what it buys.
+Image blurred(Context& ctx, const DemoFrame& f, const Image& visibility)
+{
+    BilateralOptions o;
+    o.relative = true;
+    o.depth_sigma = 0.02f;
+    o.separable = true;
+    return cross_bilateral(ctx, visibility, f.receivers.view_depth, o);
+}
+
+DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vector<int> keep)
+{
+    DemoMethod m{name, {}, 0};
+    for (int index : keep) {
+        DemoSetting inner = source.settings[std::size_t(index)];
+        m.settings.push_back({inner.label + " +blur", [inner](Context& ctx, const DemoFrame& f) {
+                                  return blurred(ctx, f, inner.run(ctx, f));
+                              }});
+    }
+    return m;
+}
+
 }  // namespace
 
 std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size)
 {
-    return {vsm_method(), vssm_method(scene, map_size)};
+    DemoMethod sdf_grid = sdf_method(scene, map_size, false);
+    return {vsm_method(),
+            blurred_method(vsm_method(), "vsm+blur", {0, 1}),
+            vssm_method(scene, map_size),
+            sdf_grid,
+            blurred_method(sdf_grid, "sdf+blur", {0}),
+            sdf_method(scene, map_size, true)};
 }
 
 }  // namespace penumbra::cli

@@ -8,6 +8,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "sdf_command.h"
 #include "penumbra/error.h"
 
 namespace {
@@ -23,6 +24,11 @@ const char* kUsage =
     "  render-scene NAME --shadow-map SM.exr --receivers RX.exr --truth GT.exr [options]\n"
     "                              a reference scene and its ray-traced ground truth\n"
     "  demo [--quick] [--out DIR]  every method on every scene: images, CSV, time-vs-error chart\n"
+    "  blur --in MASK.exr --guide DEPTH.exr --out OUT.exr [options]\n"
+    "                              cross-bilateral blur of a mask, stopping at depth edges (blur --help)\n"
+    "  sdf-shade (--scene S | --grid G) --receivers RX.exr --out OUT.exr [options]\n"
+    "                              sphere-traced distance-field soft shadows (sdf-shade --help)\n"
+    "  sdf-bake --scene S --out GRID.pnsdf [--voxel V]  a scene's distance grid, for sdf-shade --grid\n"
     "\n"
     "Environment: PENUMBRA_BACKEND=auto|simd|opencl|scalar overrides Auto;\n"
     "PENUMBRA_SIMD_ISA=sse4.2|avx2|avx512 forces an ISA.\n";
@@ -51,6 +57,9 @@ int main(int argc, char** argv)
         if (command == "example") return penumbra::cli::example_command(args);
         if (command == "render-scene") return penumbra::cli::render_scene_command(args);
         if (command == "demo") return penumbra::cli::demo_command(args);
+        if (command == "blur") return penumbra::cli::blur_command(args);
+        if (command == "sdf-shade") return penumbra::cli::sdf_shade_command(args);
+        if (command == "sdf-bake") return penumbra::cli::sdf_bake_command(args);
         std::cerr << "penumbra: unknown command '" << command << "' (see penumbra --help)\n";
         return 2;
     } catch (const penumbra::cli::UsageError& e) {
@@ -58,8 +67,8 @@ int main(int argc, char** argv)
         return 2;
     } catch (const penumbra::Error& e) {
         const bool bad_input = e.category() != penumbra::ErrorCategory::Backend;
-        std::cerr << "penumbra " << command << ": " << (bad_input ? one_line(e.what()) : std::string(e.what()))
-                  << "\n";
+        // The message starts with the operation that failed ("shade: ...").
+        std::cerr << "penumbra " << (bad_input ? one_line(e.what()) : std::string(e.what())) << "\n";
         return bad_input ? 2 : 1;
     } catch (const std::exception& e) {
         std::cerr << "penumbra " << command << ": internal error: " << one_line(e.what()) << "\n";

@@ -29,6 +29,23 @@ public:
     // `params` is complete; bad_rows: per receiver row.
     virtual void chebyshev(ChebyshevMethod method, const MomentTable& table, const Image& receivers,
                            const ChebyshevParams& params, Image& out, int* bad_rows) = 0;
+    // Cross-bilateral filter (kernels/bilateral.h) of `mask` into `out`.
+    // `normals` is null unless params.use_normals; `taps` holds the window's
+    // offsets as (dx, dy) pairs (separable: (d, d)), `weights` their spatial
+    // weights and base-2 exponents as pairs; `params` is complete but for
+    // `pass` and `pass_first_row`, which the separable schedule sets.
+    // bad_rows: per mask row.
+    virtual void cross_bilateral(const Image& mask, const Image& guide, const Image* normals,
+                                 const std::vector<int>& taps, const std::vector<float>& weights, bool separable,
+                                 const BilateralParams& params, Image& out, int* bad_rows) = 0;
+    // SDF soft shadows (kernels/sdf.h) through a distance grid (`data`: the
+    // nodes) or analytic primitives (`data`: the packed records, `floats` of
+    // them, possibly none). `normals` is `positions` when params.normal_offset
+    // is 0; `out` has 1 or 2 planes; `params` is complete; bad_rows: per receiver row.
+    virtual void sdf_grid(const float* data, std::size_t floats, const Image& positions, const Image& normals,
+                          const SdfParams& params, Image& out, int* bad_rows) = 0;
+    virtual void sdf_analytic(const float* data, std::size_t floats, const Image& positions, const Image& normals,
+                              const SdfParams& params, Image& out, int* bad_rows) = 0;
 };
 
 pn_dims dims_of(const Image& image);
