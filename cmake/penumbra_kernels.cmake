@@ -14,6 +14,12 @@ set(PENUMBRA_KERNEL_FILES
   kernels/vssm.h
   kernels/bilateral.h
   kernels/sdf.h
+  kernels/moment_quantize.h
+  kernels/exponential_warp.h
+  kernels/encoded_table.h
+  kernels/evsm.h
+  kernels/msm.h
+  kernels/msm_soft.h
 )
 
 set(_gen ${CMAKE_CURRENT_BINARY_DIR}/generated)

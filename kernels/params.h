@@ -102,6 +102,42 @@ typedef struct {
     float voxel, inv_voxel;  /* grid: node spacing and its reciprocal */
 } SdfParams;
 
+/* The moment family: MSM, moment soft shadows, EVSM (kernels/moment_quantize.h,
+ * exponential_warp.h, encoded_table.h, evsm.h, msm.h, msm_soft.h). */
+#define PN_ENCODE_MSM 0           /* 4 channels: the optimized 16-bit moment encoding */
+#define PN_ENCODE_EVSM 1          /* 2 or 4 channels: the exponential warps */
+#define PN_MOMENTS_POWER 0        /* an MSM table of float sums of z, z^2, z^3, z^4 */
+#define PN_MOMENTS_OPTIMIZED16 1  /* an MSM table of sums of optimized 16-bit moments */
+typedef struct {
+    pn_dims depth;           /* one plane: depths in [0, 1] */
+    pn_dims table;           /* `channels` planes of inclusive sums (SatParams' layout) */
+    pn_dims columns;         /* `channels` planes, one row per band: its column totals */
+    int channels;            /* 4 (MSM), 2 or 4 (EVSM) */
+    int band_height;         /* rows per band */
+    int encoding;            /* PN_ENCODE_MSM or PN_ENCODE_EVSM */
+    int quantize;            /* float tables: 1 rounds each value to a 16-bit step */
+    float exponent_positive; /* EVSM: c+ */
+    float exponent_negative; /* EVSM: c- */
+} EncodedSatParams;
+
+typedef struct {
+    pn_dims table;           /* the table (SatParams' layout) */
+    pn_dims receivers;       /* planes u, v, z */
+    pn_dims out;             /* one plane: visibility */
+    int radius;              /* msm, evsm: box radius in texels */
+    int max_radius;          /* msm_soft: the largest filter radius the table allows */
+    int storage;             /* msm float tables: PN_MOMENTS_POWER or PN_MOMENTS_OPTIMIZED16 */
+    int channels;            /* evsm: 2 (positive warp) or 4 (both) */
+    float moment_bias;       /* msm: alpha in [0, 1) */
+    float noise_variance;    /* msm: a window's variance (depth^2) the storage cannot tell from 0 */
+    float depth_bias;        /* subtracted from the receiver's depth */
+    float light_size;        /* msm_soft: as ChebyshevParams' */
+    float min_variance;      /* evsm: depth^2, scaled by the warp's squared slope */
+    float bleed;             /* evsm: light-bleeding reduction in [0, 1) */
+    float exponent_positive; /* evsm: c+ */
+    float exponent_negative; /* evsm: c- */
+} MomentParams;
+
 #ifdef __cplusplus
 }  /* namespace penumbra */
 #endif

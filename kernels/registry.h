@@ -19,6 +19,14 @@
     X(bilateral_horizontal)   \
     X(bilateral_vertical)     \
     X(sdf_grid)               \
-    X(sdf_analytic)
+    X(sdf_analytic)           \
+    X(encoded_bands_float)    \
+    X(encoded_bands_exact)    \
+    X(msm_float)              \
+    X(msm_exact)              \
+    X(msm_soft_float)         \
+    X(msm_soft_exact)         \
+    X(evsm_float)             \
+    X(evsm_exact)
 
 #endif

@@ -31,6 +31,11 @@ public:
                   const SdfParams& params, Image& out, int* bad_rows) override;
     void sdf_analytic(const float* data, std::size_t floats, const Image& positions, const Image& normals,
                       const SdfParams& params, Image& out, int* bad_rows) override;
+    // simd/cpu_moments.cpp
+    void build_encoded_table(const Image& depth, const EncodedSatParams& params, MomentTable& table,
+                             int* bad_rows) override;
+    void moment_lookup(MomentMethod method, const MomentTable& table, const Image& receivers,
+                       const MomentParams& params, Image& out, int* bad_rows) override;
 
 private:
     const CpuKernels& k_;

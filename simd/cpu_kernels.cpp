@@ -95,6 +95,14 @@ static constexpr CpuKernels make_table()
     t.bilateral_vertical_span = &isa::bilateral_vertical_span;
     t.sdf_grid = &isa::sdf_grid;
     t.sdf_analytic = &isa::sdf_analytic;
+    t.encoded_bands_float = &isa::encoded_bands_float;
+    t.encoded_bands_exact = &isa::encoded_bands_exact;
+    t.msm_float = &isa::msm_float;
+    t.msm_exact = &isa::msm_exact;
+    t.msm_soft_float = &isa::msm_soft_float;
+    t.msm_soft_exact = &isa::msm_soft_exact;
+    t.evsm_float = &isa::evsm_float;
+    t.evsm_exact = &isa::evsm_exact;
     return t;
 }
 

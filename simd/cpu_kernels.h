@@ -51,6 +51,14 @@ struct CpuKernels {
                                     BilateralParams, int x0, int x1, int y0, int y1);
     void (*sdf_grid)(const float*, const float*, const float*, float*, int*, SdfParams, int x, int y);
     void (*sdf_analytic)(const float*, const float*, const float*, float*, int*, SdfParams, int x, int y);
+    void (*encoded_bands_float)(const float*, float*, float*, int*, EncodedSatParams, int task);
+    void (*encoded_bands_exact)(const float*, u32*, u32*, int*, EncodedSatParams, int task);
+    void (*msm_float)(const float*, const float*, float*, int*, MomentParams, int x, int y);
+    void (*msm_exact)(const u32*, const float*, float*, int*, MomentParams, int x, int y);
+    void (*msm_soft_float)(const float*, const float*, float*, int*, MomentParams, int x, int y);
+    void (*msm_soft_exact)(const u32*, const float*, float*, int*, MomentParams, int x, int y);
+    void (*evsm_float)(const float*, const float*, float*, int*, MomentParams, int x, int y);
+    void (*evsm_exact)(const u32*, const float*, float*, int*, MomentParams, int x, int y);
 };
 
 extern const CpuKernels kernels_scalar;

@@ -18,7 +18,7 @@ const char* kUsage =
     "\n"
     "usage: penumbra <command> [options]\n"
     "  info [--json] [--verbose]   backends, the one Auto chooses and why, CPU ISAs, OpenCL devices\n"
-    "  shade --method vsm|vssm --shadow-map SM.exr --receivers RX.exr --out OUT.exr [options]\n"
+    "  shade --method vsm|vssm|msm|msm-soft|evsm2|evsm4 --shadow-map SM.exr --receivers RX.exr --out OUT.exr [options]\n"
     "                              filter a shadow map for a set of receivers (shade --help)\n"
     "  example --out DIR           write a small synthetic shadow map and receivers to DIR\n"
     "  render-scene NAME --shadow-map SM.exr --receivers RX.exr --truth GT.exr [options]\n"

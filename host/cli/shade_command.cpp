@@ -14,12 +14,13 @@
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
 #include "penumbra/moment_table.h"
+#include "moments_command.h"
 
 namespace penumbra::cli {
 namespace {
 
 const char* kShadeHelp =
-    "usage: penumbra shade --method vsm|vssm --shadow-map SM.exr --receivers RX.exr --out OUT.exr\n"
+    "usage: penumbra shade --method vsm|vssm|msm|msm-soft|evsm2|evsm4 --shadow-map SM.exr --receivers RX.exr --out OUT.exr\n"
     "                      [--backend auto|simd|opencl|scalar] [method options]\n"
     "  SM.exr: float channel Z, light depth in [0, 1]; RX.exr: float channels u, v, z;\n"
     "  OUT.exr: float channel Y, visibility in [0, 1] on the receivers' grid.\n"
@@ -29,6 +30,15 @@ const char* kShadeHelp =
     "  --bleed B          light-bleeding reduction in [0, 1) (default 0 = off)\n"
     "  --light-size L     vssm: light width in texture units at the near plane (default 0.02), > 0\n"
     "  --precision P      exact (default: 16-bit fixed point, exact window sums) or float\n"
+    "  --quantize B       msm*, evsm*: bits per stored value: 16 (default with exact; MSM: the I3D 2015\n"
+    "                     optimized quantization) or 32 (floats; default with --precision float)\n"
+    "  --moment-bias A    msm, msm-soft: share of each window moved to depths 0 and 1, in [0, 1) (6e-5)\n"
+    "  --depth-bias D     msm*, evsm*: subtracted from receiver depth, in [0, 1); msm default: two 16-bit\n"
+    "                     depth steps (3.05e-5), 1.5e-5 with --quantize 32; sloped receivers need about\n"
+    "                     half a texel's depth change more; evsm default 0\n"
+    "  --exponents P,N    evsm4 warp exponents (evsm2: P), at most 5.545 with --quantize 16, 42 with 32\n"
+    "                     (defaults 5.545,5.545 and 10,5). --radius, --min-variance and --bleed apply to\n"
+    "                     evsm2/evsm4 too, --radius to msm, --light-size to msm-soft\n"
     "  --backend B        auto (default), simd, opencl or scalar\n";
 
 // Names the file, the channel and the first bad pixel.
@@ -67,8 +77,8 @@ Image read_receivers(const std::string& path)
 
 void check_options(const std::string& method, int radius, float min_variance, float bleed, float light_size)
 {
-    if (method != "vsm" && method != "vssm")
-        throw UsageError{"option --method: '" + method + "' is not vsm or vssm"};
+    if (method != "vsm" && method != "vssm" && !is_moment_method(method))
+        throw UsageError{"option --method: '" + method + "' is not vsm, vssm, msm, msm-soft, evsm2 or evsm4"};
     if (radius < 0) throw UsageError{"option --radius: must be >= 0 (got " + std::to_string(radius) + ")"};
     if (min_variance < 0.0f) throw UsageError{"option --min-variance: must be >= 0"};
     if (bleed < 0.0f || bleed >= 1.0f) throw UsageError{"option --bleed: must be in [0, 1)"};
@@ -81,7 +91,8 @@ int shade_command(const std::vector<std::string>& argv)
 {
     const Args args(argv,
                     {"--method", "--shadow-map", "--receivers", "--out", "--backend", "--radius", "--min-variance",
-                     "--bleed", "--light-size", "--precision"},
+                     "--bleed", "--light-size", "--precision", kMomentOptionNames[0], kMomentOptionNames[1],
+                     kMomentOptionNames[2], kMomentOptionNames[3]},
                     {"--help"});
     if (args.flag("--help")) {
         std::cout << kShadeHelp;
@@ -104,11 +115,20 @@ int shade_command(const std::vector<std::string>& argv)
     } catch (const Error& e) {
         throw UsageError{std::string(e.what())};
     }
+    std::optional<MomentShadeSettings> moments;
+    if (is_moment_method(method)) moments = parse_moment_settings(method, args, precision);
+    else if (args.get("--moment-bias") || args.get("--depth-bias") || args.get("--quantize") || args.get("--exponents"))
+        throw UsageError{"options --moment-bias, --depth-bias, --quantize and --exponents apply to msm, msm-soft, "
+                         "evsm2 and evsm4"};
 
     const Image map = read_shadow_map(sm_path);
     const Image receivers = read_receivers(rx_path);
     Context context(ContextOptions{backend, {}});
     for (const std::string& warning : context.warnings()) std::cerr << "penumbra shade: warning: " << warning << "\n";
+    if (moments) {
+        write_exr(out_path, shade_moments(context, *moments, map, receivers), {"Y"});
+        return 0;
+    }
     const MomentTable table = build_moment_table(context, map, 2, precision);
     const Image visibility = method == "vsm" ? vsm(context, table, receivers, VsmOptions{radius, min_variance, bleed})
                                              : vssm(context, table, receivers, VssmOptions{light_size, min_variance, bleed});

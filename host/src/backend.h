@@ -46,6 +46,16 @@ public:
                           const SdfParams& params, Image& out, int* bad_rows) = 0;
     virtual void sdf_analytic(const float* data, std::size_t floats, const Image& positions, const Image& normals,
                               const SdfParams& params, Image& out, int* bad_rows) = 0;
+    // The moment family (kernels/encoded_table.h, msm.h, msm_soft.h, evsm.h).
+    // Fills `table` (zeroed, params.channels planes) with the sums of encoded
+    // texels; `params` is complete but for columns and band_height, which the
+    // schedule sets. bad_rows: per depth row.
+    virtual void build_encoded_table(const Image& depth, const EncodedSatParams& params, MomentTable& table,
+                                     int* bad_rows) = 0;
+    enum class MomentMethod { Msm, MsmSoft, Evsm };
+    // `params` is complete; bad_rows: per receiver row.
+    virtual void moment_lookup(MomentMethod method, const MomentTable& table, const Image& receivers,
+                               const MomentParams& params, Image& out, int* bad_rows) = 0;
 };
 
 pn_dims dims_of(const Image& image);

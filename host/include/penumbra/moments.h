@@ -1,0 +1,141 @@
+// The moment family: moment shadow maps (MSM, Peters & Klein, I3D 2015, with
+// the Hausdorff fallback), moment soft shadows (Peters et al., I3D 2016 /
+// JCGT 2017) and exponential variance shadow maps (EVSM2, EVSM4). The kernels
+// are kernels/msm.h, msm_soft.h, evsm.h and encoded_table.h; docs/moments.md
+// derives the defaults and has the measured figures.
+//
+// A depth map (one channel, light depth in [0, 1]) becomes a summed-area
+// table of encoded texels (build_msm_table, build_evsm_table); lookups take
+// receivers (3 channels: u, v in [0, 1], clamped into the map, and light
+// depth z) and return one channel of visibility in [0, 1], never NaN.
+//
+// Storage, two independent choices:
+//  - Quantization: what each texel stores before summation. Bits16: 16-bit
+//    steps of 1/65535 (MSM: of the paper's optimized transform of z..z^4;
+//    EVSM: of the warped values); Bits32: 32-bit floats (MSM: z..z^4).
+//  - Precision: how window sums are formed. Exact: wrapping uint32 sums of the
+//    16-bit steps, exact for windows up to 255 x 255 texels (Bits16 only);
+//    Float: float sums, any window, but their error grows with the map
+//    (docs/moment_table.md).
+// Bad input throws penumbra::Error naming the parameter.
+#pragma once
+
+#include <optional>
+
+#include "penumbra/context.h"
+#include "penumbra/image.h"
+#include "penumbra/moment_table.h"
+
+namespace penumbra {
+
+enum class Quantization { Bits16, Bits32 };
+
+// --- MSM -----------------------------------------------------------------
+
+// Moment bias alpha: the share of every window replaced by a distribution
+// half at depth 0 and half at depth 1, so that rounding cannot push the
+// moments out of the set of valid moment vectors; it adds at most alpha / 2
+// of light. Both defaults are 6e-5, measured (docs/moments.md, "Biases"):
+//  - Bits16: its variance alpha / 4 must cover the worst variance the 16-bit
+//    rounding shows at a one-depth window, 1.02e-5 (decoded in float; the
+//    sweep of all 65536 depths needs alpha >= 2e-5), so alpha = 4 x 1.5e-5:
+//    the paper's 6e-5; the error against the exact bound on few-depth windows
+//    stops falling from 3e-5 on;
+//  - Bits32: the literature's 3e-7 assumes a reconstruction more precise than
+//    float32: on the same windows it is off the exact bound by up to 0.052 (at
+//    a depth uncertainty of 1e-3), 6e-5 by 0.002.
+inline constexpr float kMsmMomentBias16 = 6e-5f;
+inline constexpr float kMsmMomentBias32 = 6e-5f;
+// Depth bias, subtracted from the receiver's depth (units of the [0, 1]
+// depth range). Bits16: twice the worst error of a one-depth window's
+// decoded mean (9.1e-6), rounded up to two 16-bit depth steps, 2 / 65535 =
+// 3.05e-5 (0.4 mm on a 13.5 m depth range). Bits32: one 16-bit step,
+// 2^-16 = 1.5e-5: the depths of a two-depth window come back from float
+// moments to about 1e-6 (the straight-edge test, tests/msm_soft_test.cpp,
+// fails at 2^-21), with margin. A sloped receiver needs more: about half a
+// texel's depth change at the receiver (receiver-plane bias; 3e-4 on the
+// overlap scene at 512^2, docs/moments.md).
+inline constexpr float kMsmDepthBias16 = 2.0f / 65535.0f;
+inline constexpr float kMsmDepthBias32 = 0x1p-16f;
+float default_moment_bias(Quantization quantization);
+float default_depth_bias(Quantization quantization);
+
+// Four moments per texel, summed.
+struct MsmTable {
+    MomentTable sums;  // 4 planes: the optimized channels (Bits16) or z..z^4 (Bits32)
+    Quantization quantization = Quantization::Bits16;
+};
+
+// Throws Error for an empty or multi-channel map, depths outside [0, 1] or
+// non-finite, and Bits32 with Precision::Exact (an exact table holds 16-bit
+// values).
+MsmTable build_msm_table(Context& context, const Image& depth, Quantization quantization = Quantization::Bits16,
+                         Precision precision = Precision::Exact);
+
+struct MsmOptions {
+    int radius = 2;                     // box (2r+1)^2 texels; exact tables: r <= 127
+    std::optional<float> moment_bias{}; // alpha in [0, 1); unset: default_moment_bias()
+    std::optional<float> depth_bias{};  // >= 0 and < 1; unset: default_depth_bias()
+};
+
+struct MsmSoftOptions {
+    float light_size = 0.02f;           // as VssmOptions::light_size (> 0)
+    std::optional<float> moment_bias{};
+    std::optional<float> depth_bias{};
+};
+
+Image msm(Context& context, const MsmTable& table, const Image& receivers, const MsmOptions& options = {});
+Image msm_soft(Context& context, const MsmTable& table, const Image& receivers, const MsmSoftOptions& options = {});
+// Into an existing 1-channel image of the receivers' size.
+void msm(Context& context, const MsmTable& table, const Image& receivers, const MsmOptions& options, Image& out);
+void msm_soft(Context& context, const MsmTable& table, const Image& receivers, const MsmSoftOptions& options,
+              Image& out);
+
+// --- EVSM ----------------------------------------------------------------
+
+// The largest exponent each storage holds (kernels/exponential_warp.h):
+// 16-bit steps: e^{-2c} must be one step, c <= ln(65535) / 2; floats: the
+// literature's 42 (e^{-2c} a normal float needs c <= 43.67).
+inline constexpr float kEvsmMaxExponent16 = 5.545177f;
+inline constexpr float kEvsmMaxExponent32 = 42.0f;
+// Defaults. Bits16: the limit for both warps. Bits32 (float tables): a float
+// summed-area table loses the small warped values near the light as its sums
+// grow, so the limit is not the best choice: on the overlap scene (radius 2,
+// 512^2 and 1024^2) c+ = 42 gives RMSE 0.21-0.30, c+ = 10 0.113-0.117
+// (docs/moments.md); c- = 5 (the literature's).
+inline constexpr float kEvsmPositiveExponent32 = 10.0f;
+inline constexpr float kEvsmNegativeExponent32 = 5.0f;
+
+struct EvsmWarp {
+    int channels = 4;                   // 2: positive warp only (EVSM2); 4: both (EVSM4)
+    std::optional<float> positive{};    // c+ in (0, max]; unset: the default for the quantization
+    std::optional<float> negative{};    // c- in (0, max]; unset: likewise (EVSM4 only)
+    Quantization quantization = Quantization::Bits16;
+};
+float default_evsm_exponent(Quantization quantization, bool positive);
+
+struct EvsmTable {
+    MomentTable sums;                   // `channels` planes: w+, w+^2 [, |w-|, w-^2]
+    int channels = 4;
+    float positive = 0.0f, negative = 0.0f;  // the exponents used
+    Quantization quantization = Quantization::Bits16;
+};
+
+EvsmTable build_evsm_table(Context& context, const Image& depth, const EvsmWarp& warp = {},
+                           Precision precision = Precision::Exact);
+
+struct EvsmOptions {
+    int radius = 2;
+    float min_variance = 2e-5f;         // depth^2 (as VSM's), scaled by the warp's slope; >= 0
+    float bleed = 0.0f;                 // light-bleeding reduction in [0, 1)
+    float depth_bias = 0.0f;            // >= 0 and < 1
+};
+
+Image evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options = {});
+void evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options, Image& out);
+
+std::string to_string(Quantization quantization);
+// "16" or "32"; throws Error(InvalidArgument) otherwise.
+Quantization parse_quantization(const std::string& bits);
+
+}  // namespace penumbra

@@ -1,0 +1,148 @@
+/* Summed-area tables of encoded texels: the four optimized moments of MSM
+ * (kernels/moment_quantize.h) or the exponential warps of EVSM
+ * (kernels/exponential_warp.h), and the window means read from them.
+ *
+ * Per texel, depth z in [0, 1] becomes `channels` values v_k in [0, 1]; the
+ * table holds their inclusive sums with the layout of kernels/moment_table.h
+ * (row y at table + (y + 1) * pitch, zero row and column before), so that
+ * table's box and fractional queries apply unchanged.
+ *  - exact tables: q_k = round(v_k * 65535) summed in wrapping uint32. Every
+ *    q_k <= 65535, so a window of at most 65537 texels (255 x 255) has an
+ *    exact sum (the argument of moment_table.h); its mean is sum / (65535 A).
+ *  - float tables: v_k, or with `quantize` v_k rounded to a 16-bit step,
+ *    summed in float (the float table's error: docs/moment_table.md).
+ * A depth outside [0, 1] (NaN and infinities included) flags its row.
+ *
+ * Schedule (the host's, both backends): bands of `band_height` rows are
+ * scanned in parallel, each from zero, each leaving its column totals in row
+ * `band` of `columns`; then sat_join_bands_* (moment_table.h) adds the totals
+ * of the bands above to every pixel.
+ */
+#ifndef PENUMBRA_ENCODED_TABLE_H
+#define PENUMBRA_ENCODED_TABLE_H
+
+PN_FN void encode_texel(pn_float z, const EncodedSatParams p, pn_float* v)
+{
+    if (p.encoding == PN_ENCODE_MSM)
+        msm_encode_optimized(z, v);
+    else
+        evsm_encode(z, p.exponent_positive, p.exponent_negative, p.channels, v);
+    if (p.quantize)
+        for (int k = 0; k < p.channels; ++k) v[k] = msm_quantize_step(v[k]);
+}
+
+PN_FN pn_uint encoded_step(pn_float v)
+{
+    return pn_float_to_uint(pn_floor(pn_clamp(v, 0.0f, 1.0f) * PN_QUANTIZE_STEPS + 0.5f));
+}
+
+/* Rows [y0, y1) of one band, float table. */
+PN_FN void encoded_band_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table, PN_GLOBAL float* columns,
+                              PN_GLOBAL int* bad_rows, const EncodedSatParams p, int band, int y0, int y1)
+{
+    for (int y = y0; y < y1; ++y) {
+        pn_float row_sum[4];
+        for (int k = 0; k < p.channels; ++k) row_sum[k] = 0.0f;
+        pn_mask bad = sat_depth_outside(0.0f);
+        PN_FOR_STRIPS(x, 0, p.depth.width)
+        {
+            const pn_float z = pn_load(depth, p.depth, x, y);
+            bad = pn_or(bad, sat_depth_outside(z));
+            pn_float v[4];
+            encode_texel(pn_clamp(z, 0.0f, 1.0f), p, v);
+            for (int k = 0; k < p.channels; ++k) {
+                PN_GLOBAL float* column = PN_PLANE(columns, p.columns, k);
+                const pn_float row_prefix = pn_scan_add(v[k]) + row_sum[k];
+                const pn_float sum = pn_load(column, p.columns, x, band) + row_prefix;
+                pn_store(column, p.columns, x, band, sum);
+                pn_store(PN_PLANE(table, p.table, k), p.table, x, y + 1, sum);
+                row_sum[k] = pn_last(row_prefix);
+            }
+        }
+        pn_flag_any(bad_rows, y, bad);
+    }
+}
+
+/* The same, exact table. */
+PN_FN void encoded_band_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table, PN_GLOBAL uint* columns,
+                              PN_GLOBAL int* bad_rows, const EncodedSatParams p, int band, int y0, int y1)
+{
+    for (int y = y0; y < y1; ++y) {
+        pn_uint row_sum[4];
+        for (int k = 0; k < p.channels; ++k) row_sum[k] = 0u;
+        pn_mask bad = sat_depth_outside(0.0f);
+        PN_FOR_STRIPS(x, 0, p.depth.width)
+        {
+            const pn_float z = pn_load(depth, p.depth, x, y);
+            bad = pn_or(bad, sat_depth_outside(z));
+            pn_float v[4];
+            encode_texel(pn_clamp(z, 0.0f, 1.0f), p, v);
+            for (int k = 0; k < p.channels; ++k) {
+                PN_GLOBAL uint* column = PN_PLANE(columns, p.columns, k);
+                const pn_uint row_prefix = pn_uscan_add(encoded_step(v[k])) + row_sum[k];
+                const pn_uint sum = pn_uload(column, p.columns, x, band) + row_prefix;
+                pn_ustore(column, p.columns, x, band, sum);
+                pn_ustore(PN_PLANE(table, p.table, k), p.table, x, y + 1, sum);
+                row_sum[k] = pn_ulast(row_prefix);
+            }
+        }
+        pn_flag_any(bad_rows, y, bad);
+    }
+}
+
+/* Pass 1: band `pn_task` becomes a table of its own. Lanes past the width
+ * add encoded zeros to the row sums, but only after the row's last pixel. */
+PN_KERNEL void encoded_bands_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table, PN_GLOBAL float* columns,
+                                   PN_GLOBAL int* bad_rows, const EncodedSatParams p, PN_TASK_ARGS)
+{
+    const int bands = (p.depth.height + p.band_height - 1) / p.band_height;
+    PN_TASK_BEGIN(bands);
+    const int y0 = pn_task * p.band_height;
+    const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;
+    encoded_band_float(depth, table, columns, bad_rows, p, pn_task, y0, y1);
+}
+
+PN_KERNEL void encoded_bands_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table, PN_GLOBAL uint* columns,
+                                   PN_GLOBAL int* bad_rows, const EncodedSatParams p, PN_TASK_ARGS)
+{
+    const int bands = (p.depth.height + p.band_height - 1) / p.band_height;
+    PN_TASK_BEGIN(bands);
+    const int y0 = pn_task * p.band_height;
+    const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;
+    encoded_band_exact(depth, table, columns, bad_rows, p, pn_task, y0, y1);
+}
+
+/* ---- window means ----------------------------------------------------- */
+
+/* The area of a texel window, as the mean's divisor. */
+PN_FN pn_float texel_window_area(TexelWindow w)
+{
+    return pn_int_to_float((w.x1 - w.x0) * (w.y1 - w.y0));
+}
+
+/* Mean of plane k over the texels of `w` (`area` texels). Exact tables hold
+ * 16-bit steps: the mean of the values is sum / (65535 A). */
+PN_FN pn_float encoded_box_mean_float(PN_GLOBAL const float* table, pn_dims t, int k, TexelWindow w, pn_float area)
+{
+    return sat_box_sum_float(PN_PLANE(table, t, k), t, w.x0, w.x1, w.y0, w.y1) / area;
+}
+
+PN_FN pn_float encoded_box_mean_exact(PN_GLOBAL const uint* table, pn_dims t, int k, TexelWindow w, pn_float area)
+{
+    return sat_box_sum_exact(PN_PLANE(table, t, k), t, w.x0, w.x1, w.y0, w.y1) / area * (1.0f / PN_QUANTIZE_STEPS);
+}
+
+/* The same over a fractional window (kernels/moment_table.h) of `area` texels. */
+PN_FN pn_float encoded_fractional_mean_float(PN_GLOBAL const float* table, pn_dims t, int k, SatFractionalWindow w,
+                                             pn_float area)
+{
+    return sat_fractional_sum_float(PN_PLANE(table, t, k), t, w) / area;
+}
+
+PN_FN pn_float encoded_fractional_mean_exact(PN_GLOBAL const uint* table, pn_dims t, int k, SatFractionalWindow w,
+                                             pn_float area)
+{
+    return sat_fractional_sum_exact(PN_PLANE(table, t, k), t, w) / area * (1.0f / PN_QUANTIZE_STEPS);
+}
+
+#endif

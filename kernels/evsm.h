@@ -1,0 +1,76 @@
+/* Exponential variance shadow maps with a fixed box window (Lauritzen &
+ * McCool, GI 2008; the warps and their storage limits are in
+ * kernels/exponential_warp.h).
+ *
+ * Per receiver (u, v, z): the window is the (2r+1) x (2r+1) block of texels
+ * around the texel of (u, v), clipped to the map, as VSM's (kernels/vsm.h).
+ * The table (kernels/encoded_table.h) gives the window means of w+ and w+^2,
+ * and with 4 channels of |w-| and w-^2. The receiver's depth, minus
+ * depth_bias and clamped into [0, 1] (so that its warp stays finite), is
+ * warped the same way; for each warp the variance is floored at
+ * min_variance (depth^2) times the warp's squared slope at the receiver, and
+ * the visibility is the Chebyshev bound of kernels/chebyshev.h, reused as it
+ * is (see evsm_warp_visibility), with its light-bleeding reduction. With 4 channels the smaller of the two bounds is
+ * taken (both are upper bounds of the same lit fraction).
+ * Output: one plane of visibility in [0, 1].
+ */
+#ifndef PENUMBRA_EVSM_H
+#define PENUMBRA_EVSM_H
+
+/* One warp: the window's (E[w], E[w^2]) against the receiver's warped depth
+ * w_r, with the variance floored at min_variance times the warp's squared
+ * slope at the receiver. The bound is invariant under scaling the variable,
+ * so dividing w by the slope s = |dw/dz| at the receiver turns it into
+ * depth units there, where the floor is min_variance itself: the kernel
+ * reuses chebyshev_visibility (kernels/chebyshev.h) as it is, and the floor
+ * never meets the cancellation in E[w^2] - E[w]^2. (1 / s^2 <= e^{2c} / c^2
+ * stays within float range for c <= 42.) */
+PN_FN pn_float evsm_warp_visibility(pn_float mean, pn_float mean_sq, pn_float warped_receiver, pn_float slope,
+                                    const MomentParams p)
+{
+    const pn_float inverse = 1.0f / slope;
+    DepthMoments m;
+    m.mean = mean * inverse;
+    m.mean_sq = mean_sq * (inverse * inverse);
+    return chebyshev_visibility(m, warped_receiver * inverse, p.min_variance, p.bleed);
+}
+
+/* `mean` holds the window means of the table's channels. */
+PN_FN pn_float evsm_visibility(const pn_float* mean, pn_float receiver_z, const MomentParams p)
+{
+    const pn_float z = pn_clamp(receiver_z - p.depth_bias, 0.0f, 1.0f);
+    const pn_float wp = evsm_positive_warp(z, p.exponent_positive);
+    pn_float visibility = evsm_warp_visibility(mean[0], mean[1], wp, p.exponent_positive * wp, p);
+    if (p.channels == 4) {
+        const pn_float wn = evsm_negative_magnitude(z, p.exponent_negative);
+        const pn_float negative = evsm_warp_visibility(-mean[2], mean[3], -wn, p.exponent_negative * wn, p);
+        visibility = pn_min(visibility, negative);
+    }
+    return visibility;
+}
+
+PN_KERNEL void evsm_float(PN_GLOBAL const float* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
+                          PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)
+{
+    PN_PIXEL_BEGIN(p.out.width, p.out.height);
+    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
+    const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);
+    const pn_float area = texel_window_area(w);
+    pn_float mean[4];
+    for (int k = 0; k < p.channels; ++k) mean[k] = encoded_box_mean_float(table, p.table, k, w, area);
+    pn_store(out, p.out, pn_x, pn_y, evsm_visibility(mean, r.z, p));
+}
+
+PN_KERNEL void evsm_exact(PN_GLOBAL const uint* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
+                          PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)
+{
+    PN_PIXEL_BEGIN(p.out.width, p.out.height);
+    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
+    const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);
+    const pn_float area = texel_window_area(w);
+    pn_float mean[4];
+    for (int k = 0; k < p.channels; ++k) mean[k] = encoded_box_mean_exact(table, p.table, k, w, area);
+    pn_store(out, p.out, pn_x, pn_y, evsm_visibility(mean, r.z, p));
+}
+
+#endif

@@ -1,0 +1,169 @@
+/* Moment soft shadows (Peters, Münstermann, Wetzstein & Klein, "Beyond hard
+ * shadows: moment shadow maps for single scattering, soft shadows and
+ * translucent occluders", I3D 2016; "Improved moment shadow maps for
+ * translucent occluders, soft shadows and single scattering", JCGT 2017):
+ * PCSS's three steps with moments in place of samples.
+ *
+ * Per receiver (u, v, z), z_f = z - depth_bias, light_size L as VSSM's:
+ *  1. Blocker search over VSSM's search window (kernels/vssm.h: width L,
+ *     centred at (u W, v H), fractional, clipped): its four moments, biased
+ *     as in kernels/msm.h, reconstructed by the Hamburger canonical
+ *     representation through z_f (support z2, z_f, z3, weights from
+ *     kernels/msm.h). The blockers are the support points in front of z_f:
+ *     none (z_f <= z2), z2 alone (weight as in msm.h), or z2 and z3 (weight
+ *     1 - w(z_f), and their mean depth (b1 - w(z_f) z_f) / (1 - w(z_f)) by
+ *     the balance of mass and first moment). Their weighted average depth is
+ *     the blocker depth z_occ. A singular Hankel matrix uses msm.h's
+ *     two-point (or one-point) distribution the same way.
+ *     Blocker weight below moment_bias + 1e-4: no blocker (the bias itself
+ *     puts alpha / 2 at depth 0), fully lit.
+ *  2. Penumbra estimate w = L (z_f - z_occ) / z_occ (PCSS) and its filter
+ *     half-width, both exactly as VSSM's (vssm_filter_window), clamped to the
+ *     table's largest window.
+ *  3. The MSM reconstruction of kernels/msm.h over that fractional window.
+ * Output: one plane of visibility in [0, 1]; never NaN.
+ */
+#ifndef PENUMBRA_MSM_SOFT_H
+#define PENUMBRA_MSM_SOFT_H
+
+#define PN_MSM_NO_BLOCKER 1e-4f /* blocker weight (beyond the bias's) below this: lit */
+
+typedef struct {
+    pn_float weight; /* the blockers' share of the window */
+    pn_float depth;  /* their weighted average depth */
+} Blockers;
+
+PN_FN Blockers msm_blockers_definite(FourMoments b, HankelFactors h, pn_mask definite, pn_float z)
+{
+    const KernelPolynomial c = msm_solve(b, h, definite, z);
+    const Roots r = msm_roots(c);
+    const pn_float weight_z = pn_clamp(1.0f / msm_safe(msm_polynomial_at(c, z)), 0.0f, 1.0f);
+    const pn_float rest = 1.0f - weight_z;
+    const pn_float rest_depth = (b.b1 - weight_z * z) / pn_max(rest, 1e-30f);
+    const pn_float lower = (z * r.hi - b.b1 * (z + r.hi) + b.b2) / msm_safe((r.hi - r.lo) * (z - r.lo));
+    /* A root at infinity carries no weight: the other root holds all but w(z). */
+    const pn_mask one_root = pn_and(pn_finite(r.lo), pn_not(pn_finite(r.hi)));
+    Blockers k;
+    k.weight = pn_select(z <= r.lo, 0.0f, pn_select(pn_or(z > r.hi, one_root), rest, lower));
+    k.depth = pn_select(pn_or(z > r.hi, one_root), rest_depth, r.lo);
+    k.weight = pn_select(pn_and(pn_finite(k.weight), pn_finite(k.depth)), k.weight, 0.0f);
+    return k;
+}
+
+/* Where the window is one depth or two (kernels/msm.h's rule), the blockers
+ * are those depths in front of z; the bias atoms are not blockers. */
+PN_FN Blockers msm_blockers(FourMoments raw, pn_float z, MsmPrecision precision)
+{
+    const pn_mask one_point = raw.b2 - raw.b1 * raw.b1 <= precision.noise;
+    const FourMoments b = msm_bias(raw, precision.alpha);
+    const HankelFactors h = msm_factor(b);
+    const pn_mask definite = pn_and(msm_positive_definite(b, h, precision.noise), pn_not(one_point));
+    Blockers k = msm_blockers_definite(b, h, definite, z);
+    const TwoPoints t = msm_two_points(raw, msm_factor(raw));
+    const pn_mask two_point = pn_and(pn_not(pn_or(definite, one_point)), msm_two_points_valid(t));
+    const pn_float two_weight = pn_select(z <= t.x1, 0.0f, pn_select(z <= t.x2, 1.0f - t.upper_weight, 1.0f));
+    const pn_float two_depth = pn_select(z <= t.x2, t.x1, raw.b1);
+    const pn_mask point = pn_not(pn_or(definite, two_point));
+    k.weight = pn_select(two_point, two_weight, pn_select(point, pn_select(raw.b1 < z, 1.0f, 0.0f), k.weight));
+    k.depth = pn_select(two_point, two_depth, pn_select(point, raw.b1, k.depth));
+    k.weight = pn_clamp(k.weight, 0.0f, 1.0f);
+    k.depth = pn_clamp(k.depth, 0.0f, pn_max(z, 0.0f));
+    return k;
+}
+
+/* VSSM's window geometry (kernels/vssm.h) from these parameters. */
+PN_FN ChebyshevParams msm_soft_geometry(const MomentParams p)
+{
+    ChebyshevParams c;
+    c.table = p.table;
+    c.receivers = p.receivers;
+    c.out = p.out;
+    c.radius = 0;
+    c.max_radius = p.max_radius;
+    c.min_variance = 0.0f;
+    c.bleed = 0.0f;
+    c.light_size = p.light_size;
+    c.exact_scale = 1.0f / PN_QUANTIZE_STEPS;
+    return c;
+}
+
+PN_FN pn_float msm_soft_area(FractionalWindow f)
+{
+    return (f.x1 - f.x0) * (f.y1 - f.y0);
+}
+
+/* A window's moments and what they can be trusted to. */
+typedef struct {
+    FourMoments m;
+    MsmPrecision precision;
+} WindowMoments;
+
+PN_FN WindowMoments msm_soft_moments_float(PN_GLOBAL const float* table, FractionalWindow f, const MomentParams p)
+{
+    const SatFractionalWindow w = sat_fractional_window(p.table, f.x0, f.x1, f.y0, f.y1);
+    const pn_float area = msm_soft_area(f);
+    pn_float mean[4];
+    for (int k = 0; k < 4; ++k) mean[k] = encoded_fractional_mean_float(table, p.table, k, w, area);
+    WindowMoments r;
+    r.m = msm_moments_from_means(mean, p.storage);
+    r.precision = msm_float_precision(f.x1 + 1.0f, f.y1 + 1.0f, area, p);
+    return r;
+}
+
+PN_FN WindowMoments msm_soft_moments_exact(PN_GLOBAL const uint* table, FractionalWindow f, const MomentParams p)
+{
+    const SatFractionalWindow w = sat_fractional_window(p.table, f.x0, f.x1, f.y0, f.y1);
+    const pn_float area = msm_soft_area(f);
+    pn_float mean[4];
+    for (int k = 0; k < 4; ++k) mean[k] = encoded_fractional_mean_exact(table, p.table, k, w, area);
+    WindowMoments r;
+    r.m = msm_moments_from_means(mean, PN_MOMENTS_OPTIMIZED16);
+    r.precision = msm_exact_precision(p);
+    return r;
+}
+
+/* Steps 1-2 from the search window's moments: the filter window, and `lit`
+ * for receivers with no blocker. */
+PN_FN FractionalWindow msm_soft_filter_window(WindowMoments search, Receiver r, const MomentParams p, pn_mask* lit)
+{
+    const Blockers k = msm_blockers(search.m, r.z, search.precision);
+    *lit = pn_or(k.weight < search.precision.alpha + PN_MSM_NO_BLOCKER, r.z <= 0.0f);
+    return vssm_filter_window(msm_soft_geometry(p), r, k.depth);
+}
+
+/* The receiver with its depth biased: z_f. */
+PN_FN Receiver msm_soft_receiver(Receiver r, const MomentParams p)
+{
+    r.z = r.z - p.depth_bias;
+    return r;
+}
+
+PN_KERNEL void msm_soft_float(PN_GLOBAL const float* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
+                              PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)
+{
+    PN_PIXEL_BEGIN(p.out.width, p.out.height);
+    const Receiver r = msm_soft_receiver(load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows), p);
+    const ChebyshevParams geometry = msm_soft_geometry(p);
+    pn_mask lit;
+    const WindowMoments search = msm_soft_moments_float(table, vssm_search_window(geometry, r), p);
+    const FractionalWindow filter = msm_soft_filter_window(search, r, p, &lit);
+    const WindowMoments m = msm_soft_moments_float(table, filter, p);
+    const pn_float visibility = 1.0f - msm_intensity(m.m, r.z, m.precision);
+    pn_store(out, p.out, pn_x, pn_y, pn_select(lit, 1.0f, visibility));
+}
+
+PN_KERNEL void msm_soft_exact(PN_GLOBAL const uint* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
+                              PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)
+{
+    PN_PIXEL_BEGIN(p.out.width, p.out.height);
+    const Receiver r = msm_soft_receiver(load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows), p);
+    const ChebyshevParams geometry = msm_soft_geometry(p);
+    pn_mask lit;
+    const WindowMoments search = msm_soft_moments_exact(table, vssm_search_window(geometry, r), p);
+    const FractionalWindow filter = msm_soft_filter_window(search, r, p, &lit);
+    const WindowMoments m = msm_soft_moments_exact(table, filter, p);
+    const pn_float visibility = 1.0f - msm_intensity(m.m, r.z, m.precision);
+    pn_store(out, p.out, pn_x, pn_y, pn_select(lit, 1.0f, visibility));
+}
+
+#endif
