@@ -20,6 +20,8 @@
 #include "penumbra/exr_io.h"
 #include "support/backends.h"
 
+#include "support/cli.h"
+
 namespace penumbra {
 namespace {
 
@@ -140,29 +142,19 @@ INSTANTIATE_TEST_SUITE_P(Backends, BilateralErrorTest, ::testing::ValuesIn(backe
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using testing::slurp;
 
-class BlurCliTest : public ::testing::Test {
+class BlurCliTest : public testing::CliFixture {
 protected:
     void SetUp() override
     {
-        dir_ = fs::temp_directory_path() / ("penumbra_blur_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
+        CliFixture::SetUp();
         guide_ = testing::structured_guide(33, 21, 5);
         mask_ = testing::random_mask(33, 21, 2, 6);
         write_exr(path("depth.exr"), guide_, {"Z"});
         write_exr(path("mask.exr"), mask_, {"shadow", "ao"});
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
     struct Run {
         int status;
@@ -191,7 +183,6 @@ protected:
         EXPECT_EQ(slurp(path("out.exr")), "previous contents");
     }
 
-    fs::path dir_;
     Image guide_, mask_;
 };
 

@@ -15,6 +15,7 @@
 #include "penumbra/chebyshev.h"
 #include "penumbra/exr_io.h"
 #include "penumbra/moment_table.h"
+#include "support/cli.h"
 #include "support/maps.h"
 
 namespace penumbra {
@@ -27,29 +28,19 @@ struct CliRun {
     std::string out, err;
 };
 
-std::string slurp(const fs::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using testing::slurp;
 
-class CliTest : public ::testing::Test {
+class CliTest : public testing::CliFixture {
 protected:
     void SetUp() override
     {
-        dir_ = fs::temp_directory_path() / ("penumbra_cli_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
+        CliFixture::SetUp();
         map_ = testing::random_depth(37, 23, 4);
         rx_ = testing::receivers_on_texels(29, 17, 37, 23, 0.2f, 0.9f, 8);
         write_exr(path("sm.exr"), map_, {"Z"});
         write_exr(path("rx.exr"), rx_, {"u", "v", "z"});
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
     CliRun run(const std::string& args, const std::string& env = "") const
     {
@@ -78,7 +69,6 @@ protected:
             EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
     }
 
-    fs::path dir_;
     Image map_, rx_;
 };
 

@@ -14,6 +14,7 @@
 
 #include "penumbra/exr_io.h"
 #include "penumbra/moments.h"
+#include "support/cli.h"
 #include "support/maps.h"
 
 namespace penumbra {
@@ -21,29 +22,19 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using testing::slurp;
 
-class MomentsCli : public ::testing::Test {
+class MomentsCli : public testing::CliFixture {
 protected:
     void SetUp() override
     {
-        dir_ = fs::temp_directory_path() / ("penumbra_moments_cli_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
+        CliFixture::SetUp();
         map_ = testing::random_depth(37, 23, 4);
         rx_ = testing::receivers_on_texels(29, 17, 37, 23, 0.2f, 0.9f, 8);
         write_exr(path("sm.exr"), map_, {"Z"});
         write_exr(path("rx.exr"), rx_, {"u", "v", "z"});
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
     int run(const std::string& args, std::string* err = nullptr) const
     {
@@ -77,7 +68,6 @@ protected:
         EXPECT_EQ(slurp(path("out.exr")), "previous contents");
     }
 
-    fs::path dir_;
     Image map_, rx_;
 };
 

@@ -18,33 +18,25 @@
 #include "penumbra/sdf.h"
 #include "penumbra/sdf_scene.h"
 
+#include "support/cli.h"
+
 namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using testing::slurp;
 
-class SdfCli : public ::testing::Test {
+class SdfCli : public testing::CliFixture {
 protected:
     void SetUp() override
     {
-        dir_ = fs::temp_directory_path() / ("penumbra_sdf_cli_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
+        CliFixture::SetUp();
         scene_ = reference::builtin_scene("contact");
         rx_ = reference::render_receivers(scene_, 23, 17);
         write_receivers("rx.exr", rx_.world_position, rx_.normal);
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
     // The render-scene layout: u, v, z, P.*, N.* (only the P and N planes matter).
     void write_receivers(const std::string& name, const Image& p, const Image& n) const
@@ -90,7 +82,6 @@ protected:
             for (int x = 0; x < got.width(); ++x) ASSERT_EQ(got.at(0, x, y), want.at(0, x, y)) << x << "," << y;
     }
 
-    fs::path dir_;
     reference::Scene scene_;
     reference::Receivers rx_;
 };
