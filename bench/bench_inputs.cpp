@@ -1,0 +1,113 @@
+#include "bench_inputs.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <new>
+#include <utility>
+
+namespace penumbra::bench {
+namespace {
+
+constexpr int kCells = 16;            // occluder grid per side
+constexpr float kOccluderShare = 0.6f; // of a cell's side: 0.36 of the area
+
+bool in_occluder(int x, int y, int size)
+{
+    const int cell = size / kCells;
+    const int side = int(float(cell) * kOccluderShare);
+    const int margin = (cell - side) / 2;
+    const int cx = x % cell, cy = y % cell;
+    return cx >= margin && cx < margin + side && cy >= margin && cy < margin + side;
+}
+
+Image make_depth_map(int size)
+{
+    Image depth(size, size, 1);
+    const float inv = 1.0f / float(size);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            // Gentle slopes, so that windows have a non-zero variance.
+            const float s = float(x) * inv, t = float(y) * inv;
+            depth.at(0, x, y) = in_occluder(x, y, size) ? 0.25f + 0.05f * s : 0.75f + 0.05f * s + 0.05f * t;
+        }
+    return depth;
+}
+
+Image make_receivers(int size)
+{
+    Image r(size, size, 3);
+    const float inv = 1.0f / float(size);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            r.at(0, x, y) = (float(x) + 0.5f) * inv;  // texel centres
+            r.at(1, x, y) = (float(y) + 0.5f) * inv;
+            r.at(2, x, y) = 0.5f + 0.1f * float(y) * inv;
+        }
+    return r;
+}
+
+template <class T, class Make>
+const T& cached(std::map<int, T>& cache, int key, Make&& make)
+{
+    auto it = cache.find(key);
+    if (it == cache.end()) it = cache.emplace(key, make()).first;
+    return it->second;
+}
+
+}  // namespace
+
+const Image& depth_map(int size)
+{
+    static std::map<int, Image> cache;
+    return cached(cache, size, [&] { return make_depth_map(size); });
+}
+
+const Image& receivers(int size)
+{
+    static std::map<int, Image> cache;
+    return cached(cache, size, [&] { return make_receivers(size); });
+}
+
+const MomentTable& moment_table(int size, Precision precision)
+{
+    static std::map<int, MomentTable> cache;
+    const int key = size * 2 + (precision == Precision::Exact);
+    return cached(cache, key, [&] {
+        Context simd(ContextOptions{Backend::Simd, ""});
+        return build_moment_table(simd, depth_map(size), 2, precision);
+    });
+}
+
+const CopyBuffers& copy_buffers(std::size_t bytes)
+{
+    static std::map<std::size_t, CopyBuffers> cache;
+    auto it = cache.find(bytes);
+    if (it != cache.end()) return it->second;
+    const std::size_t rounded = (bytes + kAlignment - 1) / kAlignment * kAlignment;
+    auto* src = static_cast<std::byte*>(std::aligned_alloc(kAlignment, rounded));
+    auto* dst = static_cast<std::byte*>(std::aligned_alloc(kAlignment, rounded));
+    if (!src || !dst) throw std::bad_alloc();
+    // Touch every page, as the table build's input is: no page fault is timed.
+    std::memset(src, 0x3c, rounded);
+    std::memset(dst, 0, rounded);
+    // Kept to the end of the process, like the other inputs.
+    return cache.emplace(bytes, CopyBuffers{src, dst, bytes}).first->second;
+}
+
+Context& context(const std::string& backend)
+{
+    static std::map<std::string, Context> cache;
+    auto it = cache.find(backend);
+    if (it != cache.end()) return it->second;
+    ContextOptions options;
+    if (backend == "scalar")
+        options.backend = Backend::Scalar;
+    else if (backend == "opencl")
+        options.backend = Backend::OpenCL;
+    else
+        options = ContextOptions{Backend::Simd, backend};
+    return cache.emplace(backend, Context(options)).first->second;
+}
+
+}  // namespace penumbra::bench

@@ -1,0 +1,45 @@
+// Inputs of penumbra_bench, made once per size and kept for the whole run so
+// that no case times their creation.
+//
+// The scene: a lit ground at depth 0.75..0.85 under a 16 x 16 grid of square
+// occluders at depth 0.25..0.30 that cover 36% of the map; the receivers sit at
+// z = 0.5..0.6 at every texel centre, so that 36% of them are in shadow, the
+// rest lit, with a penumbra band along every occluder edge (both branches of
+// the Chebyshev bound run, as in a real frame).
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "penumbra/context.h"
+#include "penumbra/image.h"
+#include "penumbra/moment_table.h"
+
+namespace penumbra::bench {
+
+// Bytes the table build moves per texel, by the project's definition: the
+// 4-byte depth read plus one 4-byte element written per moment. Both precisions
+// store 4-byte elements. The memcpy and OpenCV cases count the same figure.
+constexpr std::size_t table_bytes_per_texel(int moments) { return 4 + 4 * std::size_t(moments); }
+
+const Image& depth_map(int size);   // size x size, 1 channel
+const Image& receivers(int size);   // size x size, 3 channels (u, v, z)
+// Built once with the default SIMD backend; lookups of every backend read it.
+const MomentTable& moment_table(int size, Precision precision);
+
+// Two touched, 64-byte aligned buffers of `bytes` each, for the memcpy case.
+struct CopyBuffers {
+    std::byte* src;
+    std::byte* dst;
+    std::size_t bytes;
+};
+const CopyBuffers& copy_buffers(std::size_t bytes);
+
+// One context per backend name ("scalar", "sse4.2", "avx2", "avx512",
+// "opencl"), made on first use and kept: the OpenCL program build (seconds
+// under PoCL) stays outside every timing. Throws penumbra::Error when the
+// backend cannot start.
+Context& context(const std::string& backend);
+
+}  // namespace penumbra::bench

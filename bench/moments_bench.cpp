@@ -1,0 +1,144 @@
+// Benchmarks of the moment family (kernels/msm.h, msm_soft.h, evsm.h,
+// encoded_table.h): reconstruction throughput at 4096^2 receivers per backend
+// and ISA, 1 and 2 threads (tbb::task_arena), and the tables' builds, in the
+// same run so that SIMD / scalar and SIMD / OpenCL are ratios of one run
+// (bench/moments_ratios.py prints them; docs/moments.md has the command and
+// the figures). Case names follow penumbra_bench's `op/key:value/.../threads:n`.
+//
+// Inputs: bench/bench_inputs.h's scene (a lit ground under a grid of square
+// occluders covering 36% of the map, receivers at every texel centre between
+// them), so that the figures compare with vsm_r8 and vssm. Box methods use
+// radius 8 like vsm_r8; msm_soft the default light size, like vssm.
+#include <benchmark/benchmark.h>
+#include <tbb/task_arena.h>
+
+#include <exception>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bench_inputs.h"
+#include "penumbra/moments.h"
+#include "simd/cpu_kernels.h"
+
+namespace penumbra::bench {
+namespace {
+
+constexpr int kSize = 4096;
+constexpr int kRadius = 8;
+
+std::vector<std::string> backends()
+{
+    std::vector<std::string> names{"scalar"};
+    for (std::string_view isa : cpu::supported_isas()) names.emplace_back(isa);
+    names.emplace_back("opencl");
+    return names;
+}
+
+// Both storages: exact tables of 16-bit values (the default) and float tables of floats.
+struct Storage {
+    const char* name;
+    Quantization quantization;
+    Precision precision;
+};
+const Storage kStorages[] = {{"exact", Quantization::Bits16, Precision::Exact},
+                             {"float", Quantization::Bits32, Precision::Float}};
+
+// Tables built once with the SIMD backend; every backend's lookups read them.
+const MsmTable& msm_table(const Storage& s)
+{
+    static std::map<std::string, MsmTable> cache;
+    auto it = cache.find(s.name);
+    if (it == cache.end())
+        it = cache.emplace(s.name, build_msm_table(context("avx2"), depth_map(kSize), s.quantization, s.precision))
+                 .first;
+    return it->second;
+}
+
+const EvsmTable& evsm_table(const Storage& s, int channels)
+{
+    static std::map<std::string, EvsmTable> cache;
+    const std::string key = std::string(s.name) + std::to_string(channels);
+    auto it = cache.find(key);
+    if (it == cache.end()) {
+        EvsmWarp warp;
+        warp.channels = channels;
+        warp.quantization = s.quantization;
+        it = cache.emplace(key, build_evsm_table(context("avx2"), depth_map(kSize), warp, s.precision)).first;
+    }
+    return it->second;
+}
+
+template <class Fn>
+void timed(benchmark::State& state, const std::string& backend, int threads, Fn&& call)
+{
+    try {
+        Context& ctx = context(backend);
+        state.SetLabel(ctx.description());
+        auto loop = [&] {
+            call(ctx);  // untimed: PoCL's first launch, page faults
+            for (auto _ : state) {
+                call(ctx);
+                benchmark::ClobberMemory();
+            }
+        };
+        if (threads > 0) tbb::task_arena(threads).execute(loop);
+        else loop();
+    } catch (const std::exception& e) {
+        state.SkipWithError(e.what());
+        return;
+    }
+    const double n = double(state.iterations());
+    state.counters["pixels/s"] = benchmark::Counter(double(kSize) * kSize * n, benchmark::Counter::kIsRate);
+}
+
+void lookup(benchmark::State& state, const std::string& op, const std::string& backend, const Storage& s,
+            int threads)
+{
+    const Image& rx = receivers(kSize);
+    Image out(kSize, kSize, 1);
+    timed(state, backend, threads, [&](Context& ctx) {
+        if (op == "msm_r8") msm(ctx, msm_table(s), rx, MsmOptions{kRadius, {}, {}}, out);
+        else if (op == "msm_soft") msm_soft(ctx, msm_table(s), rx, MsmSoftOptions{}, out);
+        else evsm(ctx, evsm_table(s, op == "evsm2_r8" ? 2 : 4), rx, EvsmOptions{kRadius}, out);
+        benchmark::DoNotOptimize(out.plane(0));
+    });
+}
+
+void table(benchmark::State& state, const std::string& op, const std::string& backend, const Storage& s,
+           int threads)
+{
+    timed(state, backend, threads, [&](Context& ctx) {
+        if (op == "msm_table") {
+            MsmTable t = build_msm_table(ctx, depth_map(kSize), s.quantization, s.precision);
+            benchmark::DoNotOptimize(t.sums.storage());
+        } else {
+            EvsmTable t = build_evsm_table(ctx, depth_map(kSize), EvsmWarp{4, {}, {}, s.quantization}, s.precision);
+            benchmark::DoNotOptimize(t.sums.storage());
+        }
+    });
+}
+
+// Registered at static initialisation, as BENCHMARK() does, with names built
+// from the ISAs this CPU has. Scalar runs 1 thread, OpenCL PoCL's own.
+[[maybe_unused]] const bool registered = [] {
+    for (const char* op : {"msm_r8", "msm_soft", "evsm2_r8", "evsm4_r8", "msm_table", "evsm4_table"})
+        for (const Storage& s : kStorages)
+            for (const std::string& backend : backends())
+                for (int threads : {1, 2}) {
+                    if ((backend == "scalar" || backend == "opencl") && threads == 2) continue;
+                    const int arena = backend == "opencl" ? 0 : threads;
+                    std::string name = std::string(op) + "/backend:" + backend + "/precision:" + s.name +
+                                       "/size:" + std::to_string(kSize);
+                    if (arena) name += "/threads:" + std::to_string(threads);
+                    const bool is_table = std::string(op).find("_table") != std::string::npos;
+                    benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) {
+                        if (is_table) table(st, op, backend, s, arena);
+                        else lookup(st, op, backend, s, arena);
+                    })->UseRealTime()->Unit(benchmark::kMillisecond);
+                }
+    return true;
+}();
+
+}  // namespace
+}  // namespace penumbra::bench
