@@ -10,6 +10,8 @@
 #include <cstring>
 #include <new>
 
+#include <sys/mman.h>
+
 #include "penumbra/error.h"
 
 namespace penumbra {
@@ -23,14 +25,28 @@ int padded_pitch(int width)
 
 void AlignedBuffer::Free::operator()(std::byte* p) const noexcept { std::free(p); }
 
-AlignedBuffer::AlignedBuffer(std::size_t bytes) : size_(bytes)
+// Buffers of several megabytes (tables, 4096^2 images) are aligned to 2 MiB
+// and offered to the kernel as transparent huge pages: a fresh 128 MiB table
+// then takes 64 page faults instead of 32768 (Linux; elsewhere a no-op).
+constexpr std::size_t kHugePage = std::size_t(2) << 20;
+
+AlignedBuffer::AlignedBuffer(std::size_t bytes, Uninitialized) : size_(bytes)
 {
     if (bytes == 0) return;
-    const std::size_t rounded = (bytes + kAlignment - 1) / kAlignment * kAlignment;
-    auto* p = static_cast<std::byte*>(std::aligned_alloc(kAlignment, rounded));
+    const bool huge = bytes >= 4 * kHugePage;
+    const std::size_t alignment = huge ? kHugePage : kAlignment;
+    const std::size_t rounded = (bytes + alignment - 1) / alignment * alignment;
+    auto* p = static_cast<std::byte*>(std::aligned_alloc(alignment, rounded));
     if (!p) throw std::bad_alloc();
-    std::memset(p, 0, rounded);
+#ifdef MADV_HUGEPAGE
+    if (huge) madvise(p, rounded, MADV_HUGEPAGE);
+#endif
     data_.reset(p);
+}
+
+AlignedBuffer::AlignedBuffer(std::size_t bytes) : AlignedBuffer(bytes, Uninitialized{})
+{
+    if (bytes) std::memset(data_.get(), 0, (bytes + kAlignment - 1) / kAlignment * kAlignment);
 }
 
 AlignedBuffer::AlignedBuffer(const AlignedBuffer& other) : AlignedBuffer(other.size_)

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <cstring>
 #include <string>
 
 #include "backend.h"
@@ -41,7 +45,27 @@ MomentTable::MomentTable(int width, int height, int moments, Precision precision
     require(width > 0 && height > 0, "MomentTable", "the map is empty");
     require(moments == 2 || moments == 4, "MomentTable",
             "moments must be 2 or 4 (got " + std::to_string(moments) + ")");
-    storage_ = AlignedBuffer(storage_elements() * kElementSize);
+    storage_ = AlignedBuffer(storage_elements() * kElementSize, AlignedBuffer::Uninitialized{});
+    zero_borders();
+}
+
+// The kernels write every entry of the table's rows and nothing else; the
+// zeros the corner queries read (the lead before the origin, each plane's
+// zero row, the padding after every row, which is the next row's column -1)
+// are set here, in parallel, so that the fresh pages fault on every thread.
+void MomentTable::zero_borders()
+{
+    std::byte* base = storage_.data();
+    std::memset(base, 0, kLead * kElementSize);
+    const std::size_t rows = std::size_t(height_ + 1) * std::size_t(moments_);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 64), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t row = r.begin(); row < r.end(); ++row) {
+            std::byte* start = base + (kLead + row * std::size_t(pitch_)) * kElementSize;
+            const bool zero_row = row % std::size_t(height_ + 1) == 0;
+            const std::size_t from = zero_row ? 0 : std::size_t(width_);
+            std::memset(start + from * kElementSize, 0, (std::size_t(pitch_) - from) * kElementSize);
+        }
+    });
 }
 
 std::size_t MomentTable::storage_elements() const noexcept { return kLead + plane_pitch_ * std::size_t(moments_); }

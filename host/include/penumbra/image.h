@@ -27,6 +27,11 @@ class AlignedBuffer {
 public:
     AlignedBuffer() = default;
     explicit AlignedBuffer(std::size_t bytes);
+    // Not zero-filled: for storage a kernel writes in full. Zero-filling a
+    // fresh 128 MiB table serially cost more than building it (its page
+    // faults then all land on one thread; left to the kernel, they spread).
+    struct Uninitialized {};
+    AlignedBuffer(std::size_t bytes, Uninitialized);
     // Copies are deep: images are values.
     AlignedBuffer(const AlignedBuffer& other);
     AlignedBuffer& operator=(const AlignedBuffer& other);

@@ -55,6 +55,8 @@ public:
     std::uint32_t exact_box_sum(int k, int x0, int x1, int y0, int y1) const;
 
 private:
+    void zero_borders();
+
     int width_ = 0, height_ = 0, pitch_ = 0;
     std::size_t plane_pitch_ = 0;
     int moments_ = 0;
