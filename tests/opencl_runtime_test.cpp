@@ -395,7 +395,10 @@ TEST_F(OpenClRuntime, CorruptCacheFileFallsBackToASourceBuild)
         EXPECT_FALSE(runtime->last_build_from_cache());
         EXPECT_FALSE(runtime->last_cache_note().empty());
         expect_add1_works(program);
-        EXPECT_EQ(fs::file_size(entry), intact_size);  // repaired by the source build
+        // Repaired by the source build. Not byte-for-byte: PoCL's binary of a
+        // program differs between its first compile (cold driver cache) and
+        // later ones, so the repaired entry need not have the first one's size.
+        EXPECT_GT(fs::file_size(entry), 32u);
         runtime->build(source, "");
         EXPECT_TRUE(runtime->last_build_from_cache()) << runtime->last_cache_note();
     }
