@@ -57,6 +57,11 @@ public:
 
 private:
     cl::Kernel& kernel(const char* name) { return kernels_.at(name); }
+    // A per-pixel lookup over a moment table (VSM, VSSM, MSM, EVSM entries share
+    // the argument list: table origin, receivers, output, row flags, params).
+    // cl/opencl_chebyshev.cpp
+    void table_lookup(const char* name, const MomentTable& table, const Image& receivers, const void* params,
+                      std::size_t params_bytes, Image& out, int* bad_rows);
 
     Runtime runtime_;
     cl::Program program_;

@@ -75,26 +75,8 @@ void OpenClBackend::build_encoded_table(const Image& depth, const EncodedSatPara
 void OpenClBackend::moment_lookup(MomentMethod method, const MomentTable& table, const Image& receivers,
                                   const MomentParams& p, Image& out, int* bad_rows)
 {
-    translate_cl_errors([&] {
-        const cl::Context& ctx = runtime_.context();
-        cl::Buffer storage = wrap(ctx, table.storage(), table.storage_elements() * 4, CL_MEM_READ_ONLY);
-        cl::Buffer origin = table_origin(storage, table, CL_MEM_READ_ONLY);
-        cl::Buffer rx = wrap(ctx, receivers.plane(0), image_bytes(receivers), CL_MEM_READ_ONLY);
-        cl::Buffer result = wrap(ctx, out.plane(0), image_bytes(out), CL_MEM_WRITE_ONLY);
-        const std::size_t flag_bytes = std::size_t(receivers.height()) * sizeof(int);
-        cl::Buffer flags = wrap(ctx, bad_rows, flag_bytes, CL_MEM_READ_WRITE);
-
-        cl::Kernel& k = kernel(lookup_name(method, table.precision() == Precision::Exact));
-        k.setArg(0, origin);
-        k.setArg(1, rx);
-        k.setArg(2, result);
-        k.setArg(3, flags);
-        k.setArg(4, sizeof(MomentParams), &p);
-        k.setArg(5, 0);
-        launch_pixels(runtime_.queue(), k, out.width(), out.height());
-        sync_to_host(runtime_.queue(), result, image_bytes(out));
-        sync_to_host(runtime_.queue(), flags, flag_bytes);
-    });
+    table_lookup(lookup_name(method, table.precision() == Precision::Exact), table, receivers, &p, sizeof p, out,
+                 bad_rows);
 }
 
 }  // namespace penumbra::cl_backend
