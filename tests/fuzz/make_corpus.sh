@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Generates the fuzzers' seed corpus (docs/ci.md, "Fuzzing"); nothing of it is
+# committed. From a build with -DPENUMBRA_FUZZ=ON:
+#
+#   tests/fuzz/make_corpus.sh BUILD_DIR OUT_DIR
+#
+# OUT_DIR/exr    exr_seeds: every compression, scanline and tiled, FLOAT/HALF/UINT
+# OUT_DIR/scene  scene_seeds: every built-in scene as JSON
+# OUT_DIR/grid   `penumbra sdf-bake` of each of those scenes, at the finest voxel
+#                (from 32 down to 0.5, halving) whose grid stays under 64 KB, so
+#                that mutations rather than copies of megabytes take the fuzzer's
+#                time (coarse first: a too-fine bake of `large` takes a minute)
+set -euo pipefail
+build=${1:?usage: make_corpus.sh BUILD_DIR OUT_DIR}
+out=${2:?usage: make_corpus.sh BUILD_DIR OUT_DIR}
+mkdir -p "$out/exr" "$out/scene" "$out/grid"
+"$build/tests/fuzz/exr_seeds" "$out/exr"
+"$build/tests/fuzz/scene_seeds" "$out/scene"
+for scene in "$out"/scene/*.json; do
+  name=$(basename "$scene" .json)
+  for voxel in 32 16 8 4 2 1 0.5; do
+    "$build/penumbra" sdf-bake --scene "$scene" --out "$out/grid/try.pnsdf" --voxel "$voxel" >/dev/null
+    (($(stat -c %s "$out/grid/try.pnsdf") < 65536)) || break
+    mv "$out/grid/try.pnsdf" "$out/grid/$name.pnsdf"
+  done
+  rm -f "$out/grid/try.pnsdf"
+done
+echo "$(ls "$out/grid" | wc -l) grid seeds in $out/grid"
