@@ -124,14 +124,17 @@ struct OpenExr {
 };
 
 // What the file system can tell is checked before OpenEXR sees the file, so that
-// a wrong path, a FIFO or a file of another format gets a message that says just that.
-OpenExr open_exr(const std::string& path, std::string_view operation)
+// a wrong path, a FIFO or a file of another format gets a message that says just
+// that; and the header's claims before OpenEXR's reader sizes its tables by them.
+OpenExr open_exr(const std::string& path, std::string_view operation, const ExrReadLimits& limits,
+                 detail::ChunkCheck chunks)
 {
     OpenExr exr{open_input_file(path, operation), nullptr, nullptr};
     char magic[4] = {};
     if (!exr.file.read_at(0, magic, sizeof magic) || !Imf::isImfMagic(magic))
         throw_io(operation, quoted(path) + " is not an OpenEXR file (it lacks the EXR magic number); "
                                            "convert it to .exr first");
+    detail::validate_exr(exr.file, limits, operation, chunks);
     exr.stream = std::make_unique<DescriptorInputStream>(exr.file);
     translating_exr_exceptions(operation, path, kReadAdvice,
                                [&] { exr.reader = std::make_unique<Imf::InputFile>(*exr.stream); });
@@ -299,7 +302,7 @@ void write_file_atomically(const std::string& path, std::string_view operation,
 
 std::vector<std::string> exr_channel_names(const std::string& path)
 {
-    const OpenExr exr = open_exr(path, "exr_channel_names");
+    const OpenExr exr = open_exr(path, "exr_channel_names", {}, detail::ChunkCheck::Skip);
     return channel_names(exr.reader->header());
 }
 
@@ -307,7 +310,7 @@ Image read_exr(const std::string& path, const std::vector<std::string>& channels
 {
     constexpr std::string_view operation = "read_exr";
     require_distinct_names(channels, operation);
-    const OpenExr exr = open_exr(path, operation);
+    const OpenExr exr = open_exr(path, operation, limits, detail::ChunkCheck::DecodeEvery);
     Imf::InputFile* file = exr.reader.get();
     require_channels_present(file->header(), channels, path, operation);
     const Imath::Box2i window = file->header().dataWindow();
@@ -315,7 +318,6 @@ Image read_exr(const std::string& path, const std::vector<std::string>& channels
     if (!file->isComplete())
         throw_io(operation, quoted(path) + " is incomplete: its table of chunk offsets lacks some scanlines or tiles" +
                                 std::string(kReadAdvice));
-    detail::validate_exr(exr.file, limits, operation);
 
     Image image(extent.width, extent.height, int(channels.size()));
     translating_exr_exceptions(operation, path, kReadAdvice, [&] {
