@@ -235,6 +235,16 @@ void OutputFiles::stage(const std::string& path, const std::function<void(const 
 void OutputFiles::publish()
 {
     try {
+        publish_all();
+    } catch (...) {
+        staged_.clear();  // each unpublished temporary is removed now, not when *this dies
+        throw;
+    }
+}
+
+void OutputFiles::publish_all()
+{
+    try {
         for (auto& file : staged_) {
             if (file->fd >= 0) {
                 flush_to_disk(file->fd, file->target);

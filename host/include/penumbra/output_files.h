@@ -47,6 +47,8 @@ public:
     struct Staged;
 
 private:
+    void publish_all();
+
     std::string operation_;
     std::vector<std::unique_ptr<Staged>> staged_;
 };
