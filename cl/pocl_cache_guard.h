@@ -8,9 +8,10 @@
 // call of the next process, every file the manifest lists is checked; on any
 // mismatch, or a non-empty folder without a manifest, the whole pocl/ folder is
 // moved aside and deleted, so PoCL rebuilds from source, and one warning says so.
-// Files that appeared after the manifest was written are not checked: PoCL
-// writes each through a temporary and rename(2), so only damage after the fact
-// can spoil one, and the next manifest covers it. PoCL's `last_accessed`
+// Files that appeared after the manifest was written are not checked until the
+// next manifest covers them: PoCL 3.1 appears to write through temporaries
+// (its `tempfile_*` files) renamed into place, so only damage after the fact
+// should spoil one; that gap remains. PoCL's `last_accessed`
 // stamps and `tempfile_*` leftovers change on their own and are not listed.
 // Only the folder penumbra chose is guarded: a POCL_CACHE_DIR the user set is
 // the user's.
