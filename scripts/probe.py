@@ -58,7 +58,7 @@ class Case:
         self.inputs = inputs        # files (relative to scratch) that must not change
         self.timeout = timeout
         self.send_signal = send_signal  # (signal number, delay seconds)
-        self.check = check          # function(scratch) -> problem text or ""
+        self.check = check          # function(scratch, stderr) -> problem text or ""
         self.parallel = parallel    # concurrent copies of the same command
 
 
@@ -157,7 +157,7 @@ def run_case(binary, base, case, number):
         result["wrong"] = True
         result["detail"] += " shell injection"
     if case.check:
-        problem = case.check(scratch)
+        problem = case.check(scratch, "".join(err for _, err in outcomes))
         if problem:
             result["wrong"] = True
             result["detail"] += " " + problem
@@ -204,6 +204,11 @@ def make_inputs(binary, base):
     subprocess.run([binary, "render-scene", "contact", "--map-size", "32", "--view-size", "16x12", "--samples", "4",
                     "--shadow-map", os.path.join(inputs, "sm.exr"), "--receivers", os.path.join(inputs, "rx.exr"),
                     "--truth", os.path.join(inputs, "gt.exr")], check=True, env=env, stdout=subprocess.DEVNULL)
+    # 1 x 16384 receivers and truth: a header that claims 16384^2 then has an
+    # offset table of the right length, so only a size check can catch it.
+    subprocess.run([binary, "render-scene", "contact", "--map-size", "8", "--view-size", "1x16384", "--samples", "1",
+                    "--shadow-map", os.path.join(inputs, "tall_sm.exr"), "--receivers", os.path.join(inputs, "tall_rx.exr"),
+                    "--truth", os.path.join(inputs, "tall_gt.exr")], check=True, env=env, stdout=subprocess.DEVNULL)
     subprocess.run([binary, "sdf-bake", "--scene", "contact", "--out", os.path.join(inputs, "grid.pnsdf"),
                     "--voxel", "0.5"], check=True, env=env, stdout=subprocess.DEVNULL)
     with open(os.path.join(inputs, "scene.json"), "w") as f:
@@ -385,6 +390,16 @@ def cases_huge_window(quick):
                (-2**31, -2**31, 2**31 - 1, 2**31 - 1), (0, 0, 16383, 16383), (0, 0, 99999, 11), (0, 0, 127, 127),
                (0, 0, 64 * 2 - 1, 63), (0, 0, 63, 64 * 2 - 1), (5, 5, 4, 4), (0, 0, -1, -1), (0, 0, 3, 3)]
     cases = []
+    # 16384 lines with a consistent offset table, claimed 16384 (or 60000) wide.
+    tall = [(with_value(SHADE, "--receivers", "tall_rx.exr"), "tall_rx.exr"),
+            (with_value(BLUR, "--in", "tall_gt.exr"), "tall_gt.exr"),
+            (with_value(SDF_SHADE, "--receivers", "tall_rx.exr"), "tall_rx.exr")]
+    for command, name in tall:
+        for w in [(0, 0, 16383, 16383), (0, 0, 59999, 16383), (0, 0, 1, 16383), (0, 0, 2**31 - 2, 16383)]:
+            for extra in ([], ["--max-pixels", "1000000000000"]):
+                cases.append(Case("huge data window", command + extra, timeout=60,
+                                  setup=combine(setup_for(command), exr_setup(name, lambda d, w=w: set_window(d, *w))),
+                                  inputs=(name,)))
     for command, name in EXR_TARGETS:
         for w in windows:
             cases.append(Case("huge data window", command,
@@ -512,9 +527,9 @@ def cases_concurrent(quick):
     for copies in (2, 4, 8):
         for _ in range(2 if quick else 6):
             cases.append(Case("concurrent writers", SHADE, expect=("ok",), parallel=copies, inputs=("sm.exr",),
-                              check=lambda s: "" if valid_exr(os.path.join(s, "out.exr")) else "out.exr not an EXR"))
+                              check=lambda s, e: "" if valid_exr(os.path.join(s, "out.exr")) else "out.exr not an EXR"))
             cases.append(Case("concurrent writers", EXAMPLE, expect=("ok",), parallel=copies,
-                              check=lambda s: "" if valid_exr(os.path.join(s, "exdir/shadow_map.exr")) else "no map"))
+                              check=lambda s, e: "" if valid_exr(os.path.join(s, "exdir/shadow_map.exr")) else "no map"))
     return cases
 
 
@@ -537,7 +552,7 @@ def cases_opencl_no_driver(quick):
     # An unusable cache folder must not pose as a missing driver.
     for cache in ("{dir}/sm.exr", "/proc/penumbra-cache"):
         cases.append(Case("OpenCL without a driver", OPENCL_SHADE, env={"PENUMBRA_CACHE_DIR": cache, "POCL_CACHE_DIR": ""},
-                          check=lambda s: ""))
+                          check=lambda s, e: "" if "PENUMBRA_CACHE_DIR" in e else "the cache folder is not named"))
     return cases
 
 
