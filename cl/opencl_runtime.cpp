@@ -263,6 +263,10 @@ std::string names_of(const std::vector<FoundDevice>& found)
 
 const FoundDevice& choose(const Discovery& discovery, DeviceChoice choice)
 {
+    // PoCL hides its device when its cache folder is unusable: name the folder.
+    if (discovery.found.empty() && !driver_cache_problem().empty())
+        throw Error(ErrorCategory::Unavailable, "opencl",
+                    driver_cache_problem() + " (the OpenCL driver offers no device without it), or choose --backend simd");
     if (discovery.found.empty())
         throw Error(ErrorCategory::Unavailable, "opencl",
                     "no OpenCL device: " + discovery.problem +
@@ -314,6 +318,7 @@ cl::Program Runtime::build(const std::string& source, const std::string& options
     if (!program) {
         program = build_from_source(source, options);
         store_binary(*program, key);
+        record_driver_cache();  // PoCL wrote this program's files: record them now
     }
     last_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return *program;

@@ -1,5 +1,7 @@
 #include "cl/program_cache.h"
 
+#include "cl/pocl_cache_guard.h"
+
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -58,6 +60,30 @@ static void create_private_directories(const fs::path& dir, std::error_code& err
     error.clear();
 }
 
+namespace {
+
+// What prepare_driver_cache_environment found; written once, under its once_flag.
+std::string g_driver_cache_problem, g_driver_cache_warning;
+bool g_guarded = false;  // the PoCL folder is ours, usable, and checked
+
+fs::path pocl_manifest() { return fs::path(cache_directory()) / "pocl.manifest"; }
+
+extern "C" void record_pocl_cache_at_exit() { record_pocl_cache(pocl_cache_directory(), pocl_manifest()); }
+
+// PoCL drops its device, silently, when it cannot create or write its cache
+// folder; say so in words that name the folder and the variable to change.
+std::string unusable_folder_problem(const fs::path& dir, const std::error_code& error)
+{
+    std::string why = error ? error.message() : std::string("not writable");
+    std::error_code ignored;
+    for (fs::path part = dir; !part.empty() && part != part.parent_path(); part = part.parent_path())
+        if (fs::exists(part, ignored) && !fs::is_directory(part, ignored)) why = part.string() + " is not a directory";
+    return "the OpenCL cache folder " + dir.string() + " cannot be used (" + why +
+           "); set PENUMBRA_CACHE_DIR to a folder you can write";
+}
+
+}  // namespace
+
 void prepare_driver_cache_environment() noexcept
 {
     static std::once_flag once;
@@ -65,13 +91,38 @@ void prepare_driver_cache_environment() noexcept
         if (std::getenv("POCL_CACHE_DIR")) return;
         try {
             const std::string dir = cache_directory() + "/pocl";
-            std::error_code ignored;  // PoCL creates it too, or runs without a cache
-            create_private_directories(dir, ignored);
+            std::error_code error;
+            create_private_directories(dir, error);
+            if (error || ::access(dir.c_str(), W_OK | X_OK) != 0) {
+                g_driver_cache_problem = unusable_folder_problem(dir, error);
+            } else {
+                g_driver_cache_warning = check_pocl_cache(dir, pocl_manifest()).warning;
+                g_guarded = true;
+                std::atexit(record_pocl_cache_at_exit);
+            }
             ::setenv("POCL_CACHE_DIR", dir.c_str(), /*overwrite=*/0);
         } catch (...) {
             // Out of memory while composing a path: PoCL then uses its default.
         }
     });
+}
+
+std::string driver_cache_problem()
+{
+    prepare_driver_cache_environment();
+    return g_driver_cache_problem;
+}
+
+std::string driver_cache_warning()
+{
+    prepare_driver_cache_environment();
+    return g_driver_cache_warning;
+}
+
+void record_driver_cache()
+{
+    prepare_driver_cache_environment();
+    if (g_guarded) record_pocl_cache(pocl_cache_directory(), pocl_manifest());
 }
 
 // ---- key ----------------------------------------------------------------------

@@ -48,6 +48,19 @@ std::string pocl_cache_directory();
 // read the environment: the first OpenCL use is early enough in practice.
 void prepare_driver_cache_environment() noexcept;
 
+// Why the driver cache folder cannot be used (it cannot be created, is not a
+// directory, or is read-only), naming it and PENUMBRA_CACHE_DIR; empty when it
+// can, or when the user chose POCL_CACHE_DIR.
+std::string driver_cache_problem();
+
+// The one warning of the PoCL cache check (pocl_cache_guard.h): empty unless
+// the folder was found damaged and cleared at the start of this process.
+std::string driver_cache_warning();
+
+// Records PoCL's cache files in the manifest now (after a program build; also
+// done at exit), so that a crash later in the run still leaves a record.
+void record_driver_cache();
+
 // Everything that decides what a program binary contains.
 struct ProgramIdentity {
     std::string_view source;

@@ -157,7 +157,7 @@ TEST(ReferenceScene, BadLightAndCameraFieldsAreNamed)
 TEST(ReferenceScene, UnreadableOrMalformedFilesAreIoErrors)
 {
     expect_error([] { load_scene("/nonexistent/penumbra/scene.json"); }, ErrorCategory::Io,
-                 "/nonexistent/penumbra/scene.json: cannot open");
+                 "'/nonexistent/penumbra/scene.json' does not exist");
     expect_error([] { scene_from_json("{ \"name\": ", "broken.json"); }, ErrorCategory::Io,
                  "broken.json: not valid JSON");
     expect_error([] { scene_from_json("[1, 2]", "list.json"); }, ErrorCategory::InvalidArgument,

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "args.h"
+#include "input_limits.h"
+#include "penumbra/output_files.h"
 #include "commands.h"
 #include "penumbra/bilateral.h"
 #include "penumbra/error.h"
@@ -89,7 +91,7 @@ Image read_mask(const std::string& path, std::vector<std::string>& names)
         throw Error(ErrorCategory::InvalidData, "blur",
                     path + ": has " + std::to_string(names.size()) + " channels (" + channel_list(names) +
                         "); blur filters 1 to 4");
-    Image mask = read_exr(path, names);
+    Image mask = read_exr(path, names, exr_limits());
     if (mask.empty()) throw Error(ErrorCategory::InvalidData, "blur", path + ": the mask is empty");
     check_finite(mask, path, names);
     return mask;
@@ -97,7 +99,7 @@ Image read_mask(const std::string& path, std::vector<std::string>& names)
 
 Image read_guide(const std::string& path, const Image& mask, const std::string& mask_path)
 {
-    Image guide = read_exr(path, {"Z"});
+    Image guide = read_exr(path, {"Z"}, exr_limits());
     if (guide.width() != mask.width() || guide.height() != mask.height())
         throw Error(ErrorCategory::InvalidData, "blur",
                     path + ": the guide is " + std::to_string(guide.width()) + "x" + std::to_string(guide.height()) +
@@ -122,6 +124,7 @@ int blur_command(const std::vector<std::string>& argv)
     const std::string in_path = args.required("--in");
     const std::string guide_path = args.required("--guide");
     const std::string out_path = args.required("--out");
+    require_safe_outputs({out_path}, {in_path, guide_path}, "blur");
     const BilateralOptions options = parse_options(args);
     Backend backend;
     try {

@@ -11,7 +11,12 @@
 // chart.png (time against error, each method's Pareto front), and per scene
 // <scene>/truth.png and <scene>/<method>.{exr,png} + <method>_error.png for
 // the method's preview setting.
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -29,6 +34,7 @@
 #include "penumbra/png_io.h"
 #include "penumbra/reference_ground_truth.h"
 #include "penumbra/reference_light_space.h"
+#include "output_directory.h"
 #include "progress.h"
 
 namespace penumbra::cli {
@@ -119,7 +125,7 @@ Image cached_truth(const reference::Scene& scene, const reference::Receivers& rx
         }
     }
     Image truth = reference::ground_truth(scene, rx, {strata});
-    fs::create_directories(cache);
+    create_output_directory(cache, "--out");
     write_exr(file.string(), truth, {"Y"});
     return truth;
 }
@@ -216,14 +222,38 @@ void write_previews(const fs::path& dir, const std::string& method, const Image&
               colormap_error(signed_error(estimate, f0.truth, scored_mask(f0)), 0.5f), PngTransfer::None);
 }
 
-void write_csv(const fs::path& path, const std::vector<Row>& rows, const std::string& backend)
+void write_csv_rows(const fs::path& path, const std::vector<Row>& rows, const std::string& backend)
 {
-    std::ofstream out(path);
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out << "scene,method,settings,backend,ms_per_mpix,rmse,p99,leak,overdark,flicker\n";
     for (const Row& r : rows)
         out << r.scene << "," << r.method << ",\"" << r.setting << "\"," << backend << "," << r.ms_per_mpix << ","
             << r.rmse << "," << r.p99 << "," << r.leak << "," << r.overdark << "," << r.flicker << "\n";
+    out.flush();
     if (!out) throw Error(ErrorCategory::Io, "demo", "could not write " + path.string());
+}
+
+void write_csv(const fs::path& path, const std::vector<Row>& rows, const std::string& backend)
+{
+    detail::write_file_atomically(path.string(), "demo", [&](const std::string& temporary) {
+        write_csv_rows(temporary, rows, backend);
+    });
+}
+
+// Runs `argv` (argv[0] an absolute path) without a shell and waits for it: the
+// paths are single arguments whatever characters they hold, so no --out can
+// inject a command (std::system with quoting once could: --out "q'; touch X; '").
+int run_program(const std::vector<std::string>& argv)
+{
+    std::vector<char*> pointers;
+    for (const std::string& word : argv) pointers.push_back(const_cast<char*>(word.c_str()));
+    pointers.push_back(nullptr);
+    pid_t child = 0;
+    if (::posix_spawn(&child, pointers[0], nullptr, nullptr, pointers.data(), environ) != 0) return -1;
+    int status = 0;
+    while (::waitpid(child, &status, 0) < 0)
+        if (errno != EINTR) return -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 // Draws the chart with matplotlib through /usr/bin/python3 (Debian's, which
@@ -232,10 +262,14 @@ void write_csv(const fs::path& path, const std::vector<Row>& rows, const std::st
 void draw_chart(const fs::path& out)
 {
     const fs::path script = out / "speed_accuracy_chart.py";
-    std::ofstream(script) << kSpeedAccuracyChartScript;
-    const std::string command = "/usr/bin/python3 '" + script.string() + "' '" + (out / "results.csv").string() +
-                                "' '" + (out / "chart.png").string() + "'";
-    if (std::system(command.c_str()) != 0)
+    detail::write_file_atomically(script.string(), "demo", [](const std::string& temporary) {
+        std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+        file << kSpeedAccuracyChartScript;
+        if (!(file << std::flush)) throw Error(ErrorCategory::Io, "demo", "could not write the chart script");
+    });
+    const int status = run_program({"/usr/bin/python3", script.string(), (out / "results.csv").string(),
+                                    (out / "chart.png").string()});
+    if (status != 0)
         std::cerr << "penumbra demo: warning: the chart was not drawn (is python3-matplotlib installed?); "
                      "results.csv has the numbers\n";
 }
@@ -254,11 +288,29 @@ bool wanted(const std::vector<std::string>& list, const std::string& name)
     return list.empty() || std::find(list.begin(), list.end(), name) != list.end();
 }
 
+// Refuses unknown names before any work (a typo once ran the whole demo for an
+// empty results.csv and a Python traceback).
+void require_known_methods(const DemoOptions& o)
+{
+    std::vector<std::string> known;
+    for (const std::string& name : o.scenes) {
+        const reference::Scene scene = reference::builtin_scene(name);
+        for (const DemoMethod& m : demo_methods(scene, map_size_for(scene, o)))
+            if (std::find(known.begin(), known.end(), m.name) == known.end()) known.push_back(m.name);
+    }
+    for (const std::string& name : o.methods)
+        if (std::find(known.begin(), known.end(), name) == known.end()) {
+            std::string list;
+            for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+            throw UsageError{"option --method: '" + name + "' is not a method; the methods are " + list};
+        }
+}
+
 }  // namespace
 
 int demo_command(const std::vector<std::string>& argv)
 {
-    if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
+    if (!argv.empty() && argv[0] == "--help") {
         std::cout << "usage: penumbra demo [--quick] [--out DIR] [--backend B] [--scene a,b] [--method a,b]\n"
                      "                     [--map-size N] [--view-size WxH] [--samples S] [--frames K]\n"
                      "  every method with a sweep of its settings on every built-in scene, against the\n"
@@ -269,6 +321,8 @@ int demo_command(const std::vector<std::string>& argv)
     }
     const DemoOptions o = parse_options(argv);
     for (const std::string& name : o.scenes) reference::builtin_scene(name);  // fail early on a bad name
+    require_known_methods(o);
+    create_output_directory(o.out, "--out");
     Context ctx(ContextOptions{o.backend, {}});
     for (const std::string& w : ctx.warnings()) std::cerr << "penumbra demo: warning: " << w << "\n";
     std::cout << "penumbra demo on " << ctx.description() << "\n";
@@ -286,7 +340,7 @@ int demo_command(const std::vector<std::string>& argv)
         const reference::Scene scene = reference::builtin_scene(name);
         const std::vector<DemoFrame> frames = render_frames(scene, o, progress);
         const fs::path dir = o.out / name;
-        fs::create_directories(dir);
+        create_output_directory(dir, "--out");
         write_png((dir / "truth.png").string(), frames[0].truth);
         for (const DemoMethod& m : demo_methods(scene, map_size_for(scene, o))) {
             if (!wanted(o.methods, m.name)) continue;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <mutex>
 
 #include "penumbra/bilateral.h"
 #include "penumbra/chebyshev.h"
@@ -111,11 +112,30 @@ DemoMethod evsm_method(int channels)
 // timed) at a node budget that grows with the demo's map size; the analytic
 // form evaluates the primitives in the kernel. k comes from the light's size
 // (sdf_options_for); the sweep is the estimate and half / double that k.
+// A scene's distance grid, baked once, when first asked for.
+class LazyGrid {
+public:
+    LazyGrid(const reference::Scene& scene, std::size_t nodes) : scene_(scene), nodes_(nodes) {}
+    const DistanceGrid& get()
+    {
+        std::call_once(once_, [this] { grid_ = bake_distance_grid(scene_, nodes_); });
+        return grid_;
+    }
+
+private:
+    reference::Scene scene_;
+    std::size_t nodes_;
+    std::once_flag once_;
+    DistanceGrid grid_;
+};
+
 DemoMethod sdf_method(const reference::Scene& scene, int map_size, bool analytic)
 {
     DemoMethod m{analytic ? "sdf-analytic" : "sdf", {}, 0};
     const std::size_t nodes = map_size >= 1024 ? kSdfGridNodes : kSdfGridNodes / 8;
-    auto grid = analytic ? nullptr : std::make_shared<DistanceGrid>(bake_distance_grid(scene, nodes));
+    // Baked on first use: listing the methods (to check --method, to count the
+    // work) must not cost a bake per scene, seconds each.
+    auto grid = analytic ? nullptr : std::make_shared<LazyGrid>(scene, nodes);
     auto primitives = std::make_shared<AnalyticScene>(scene.primitives);
     struct Variant {
         const char* label;
@@ -129,7 +149,7 @@ DemoMethod sdf_method(const reference::Scene& scene, int map_size, bool analytic
                                   SdfOptions o = sdf_options_for(f.scene, v.estimate);
                                   o.k *= v.k_scale;
                                   const reference::Receivers& r = f.receivers;
-                                  return grid ? sdf_shadows(ctx, *grid, r.world_position, &r.normal, o)
+                                  return grid ? sdf_shadows(ctx, grid->get(), r.world_position, &r.normal, o)
                                               : sdf_shadows(ctx, *primitives, r.world_position, &r.normal, o);
                               }});
     }

@@ -10,6 +10,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "output_directory.h"
 #include "penumbra/exr_io.h"
 #include "penumbra/image.h"
 
@@ -59,9 +60,12 @@ int example_command(const std::vector<std::string>& argv)
     const std::filesystem::path dir = args.required("--out");
     const int size = args.integer("--map-size", 256);
     if (size < 1 || size > 16384) throw UsageError{"option --map-size: must be in [1, 16384]"};
-    std::filesystem::create_directories(dir);
-    write_exr((dir / "shadow_map.exr").string(), example_shadow_map(size), {"Z"});
-    write_exr((dir / "receivers.exr").string(), example_receivers(320, 240), {"u", "v", "z"});
+    create_output_directory(dir, "--out");
+    // Both or neither (a full disk used to leave a new map beside old receivers).
+    OutputFiles outputs("example");
+    stage_exr(outputs, (dir / "shadow_map.exr").string(), example_shadow_map(size), {"Z"});
+    stage_exr(outputs, (dir / "receivers.exr").string(), example_receivers(320, 240), {"u", "v", "z"});
+    outputs.publish();
     std::cout << "wrote " << (dir / "shadow_map.exr").string() << " and " << (dir / "receivers.exr").string() << "\n";
     return 0;
 }

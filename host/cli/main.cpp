@@ -1,13 +1,18 @@
 // penumbra: the command-line tool. Exit status: 0 success, 2 bad input (bad
 // options, unreadable or invalid files, a backend this machine lacks), 1 any
 // other failure (a backend error, a bug). Errors are one line on stderr.
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <new>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "args.h"
 #include "commands.h"
+#include "input_limits.h"
 #include "sdf_command.h"
 #include "penumbra/error.h"
 
@@ -30,6 +35,9 @@ const char* kUsage =
     "                              sphere-traced distance-field soft shadows (sdf-shade --help)\n"
     "  sdf-bake --scene S --out GRID.pnsdf [--voxel V]  a scene's distance grid, for sdf-shade --grid\n"
     "\n"
+    "Every command that reads images takes --max-pixels N (default 268435456 = 16384^2): a larger\n"
+    "data window is refused before anything is allocated.\n"
+    "\n"
     "Environment: PENUMBRA_BACKEND=auto|simd|opencl|scalar overrides Auto;\n"
     "PENUMBRA_SIMD_ISA=sse4.2|avx2|avx512 forces an ISA.\n";
 
@@ -40,28 +48,65 @@ std::string one_line(std::string text)
     return text;
 }
 
+// `--help` or `-h` anywhere asks for the command's help, whatever else is given.
+bool asks_for_help(const std::vector<std::string>& args)
+{
+    for (const std::string& word : args)
+        if (word == "--help" || word == "-h") return true;
+    return false;
+}
+
+// Takes `--max-pixels N` out of any command line into the shared read limits.
+void take_max_pixels(std::vector<std::string>& args)
+{
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        if (args[i] != "--max-pixels") continue;
+        if (i + 1 >= args.size()) throw penumbra::cli::UsageError{"option --max-pixels needs a value"};
+        const std::string& value = args[i + 1];
+        char* end = nullptr;
+        errno = 0;
+        const unsigned long long parsed = std::strtoull(value.c_str(), &end, 10);
+        if (value.empty() || value[0] == '-' || *end != '\0' || errno == ERANGE || parsed == 0)
+            throw penumbra::cli::UsageError{"option --max-pixels: '" + value + "' is not a positive integer"};
+        penumbra::cli::exr_limits().max_pixels = parsed;
+        args.erase(args.begin() + std::ptrdiff_t(i), args.begin() + std::ptrdiff_t(i) + 2);
+        --i;
+    }
+}
+
+int run(const std::string& command, std::vector<std::string> args)
+{
+    if (asks_for_help(args)) args = {"--help"};
+    else take_max_pixels(args);
+    if (command == "info") return penumbra::cli::info_command(args);
+    if (command == "shade") return penumbra::cli::shade_command(args);
+    if (command == "example") return penumbra::cli::example_command(args);
+    if (command == "render-scene") return penumbra::cli::render_scene_command(args);
+    if (command == "demo") return penumbra::cli::demo_command(args);
+    if (command == "blur") return penumbra::cli::blur_command(args);
+    if (command == "sdf-shade") return penumbra::cli::sdf_shade_command(args);
+    if (command == "sdf-bake") return penumbra::cli::sdf_bake_command(args);
+    std::cerr << "penumbra: unknown command '" << command << "' (see penumbra --help)\n";
+    return 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
 {
     std::vector<std::string> args(argv + 1, argv + argc);
-    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    if (args.empty()) {  // a mistake, not a request: the usage line goes to stderr
+        std::cerr << "usage: penumbra <command> [options] (penumbra --help lists the commands)\n";
+        return 2;
+    }
+    if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
         std::cout << kUsage;
-        return args.empty() ? 2 : 0;
+        return 0;
     }
     const std::string command = args[0];
     args.erase(args.begin());
     try {
-        if (command == "info") return penumbra::cli::info_command(args);
-        if (command == "shade") return penumbra::cli::shade_command(args);
-        if (command == "example") return penumbra::cli::example_command(args);
-        if (command == "render-scene") return penumbra::cli::render_scene_command(args);
-        if (command == "demo") return penumbra::cli::demo_command(args);
-        if (command == "blur") return penumbra::cli::blur_command(args);
-        if (command == "sdf-shade") return penumbra::cli::sdf_shade_command(args);
-        if (command == "sdf-bake") return penumbra::cli::sdf_bake_command(args);
-        std::cerr << "penumbra: unknown command '" << command << "' (see penumbra --help)\n";
-        return 2;
+        return run(command, std::move(args));
     } catch (const penumbra::cli::UsageError& e) {
         std::cerr << "penumbra " << command << ": " << one_line(e.message) << "\n";
         return 2;
@@ -70,6 +115,17 @@ int main(int argc, char** argv)
         // The message starts with the operation that failed ("shade: ...").
         std::cerr << "penumbra " << (bad_input ? one_line(e.what()) : std::string(e.what())) << "\n";
         return bad_input ? 2 : 1;
+    } catch (const std::bad_alloc&) {
+        // Inputs are checked against their sizes and --max-pixels before any
+        // large allocation, so this is a request the machine cannot meet.
+        std::cerr << "penumbra " << command
+                  << ": out of memory: the input or the sizes asked for need more memory than this machine has; "
+                     "use smaller sizes\n";
+        return 2;
+    } catch (const std::filesystem::filesystem_error& e) {
+        // A path the user gave that the file system refused (a name too long, a link loop...).
+        std::cerr << "penumbra " << command << ": " << one_line(e.what()) << "\n";
+        return 2;
     } catch (const std::exception& e) {
         std::cerr << "penumbra " << command << ": internal error: " << one_line(e.what()) << "\n";
         return 1;

@@ -13,6 +13,7 @@
 #include "args.h"
 #include "commands.h"
 #include "penumbra/exr_io.h"
+#include "penumbra/output_files.h"
 #include "penumbra/reference_ground_truth.h"
 #include "penumbra/reference_render.h"
 #include "scene_input.h"
@@ -52,7 +53,7 @@ int strata_for_samples(int samples)
 
 int render_scene_command(const std::vector<std::string>& argv)
 {
-    if (!argv.empty() && (argv[0] == "--help" || argv[0] == "-h")) {
+    if (!argv.empty() && argv[0] == "--help") {
         std::cout << "usage: penumbra render-scene NAME|SCENE.json --shadow-map SM.exr --receivers RX.exr --truth GT.exr\n"
                      "                             [--map-size N] [--view-size WxH] [--samples S]\n"
                      "  scenes: contact, overlap, fence, grazing, large (or a JSON scene file)\n"
@@ -68,6 +69,8 @@ int render_scene_command(const std::vector<std::string>& argv)
     const std::string sm_path = args.required("--shadow-map");
     const std::string rx_path = args.required("--receivers");
     const std::string gt_path = args.required("--truth");
+    // A scene file is an input too; no output may replace it or another output.
+    require_safe_outputs({sm_path, rx_path, gt_path}, {argv[0]}, "render-scene");
     const int map_size = args.integer("--map-size", scene.map_size);
     if (map_size < 1 || map_size > 16384) throw UsageError{"option --map-size: must be in [1, 16384]"};
     const ViewSize view = parse_view_size(args.text("--view-size", "320x240"));
@@ -76,9 +79,12 @@ int render_scene_command(const std::vector<std::string>& argv)
     const Image map = reference::render_shadow_map(scene, map_size, map_size);
     const reference::Receivers rx = reference::render_receivers(scene, view.width, view.height);
     const Image truth = reference::ground_truth(scene, rx, {strata});
-    write_exr(sm_path, map, {"Z"});
-    write_exr(rx_path, pack_receivers(rx), kReceiverChannels);
-    write_exr(gt_path, truth, {"Y"});
+    // All three or none: each is written in full before any replaces its target.
+    OutputFiles outputs("render-scene");
+    stage_exr(outputs, sm_path, map, {"Z"});
+    stage_exr(outputs, rx_path, pack_receivers(rx), kReceiverChannels);
+    stage_exr(outputs, gt_path, truth, {"Y"});
+    outputs.publish();
     std::cout << "wrote " << sm_path << ", " << rx_path << ", " << gt_path << " (" << scene.name << ", map "
               << map_size << "^2, " << view.width << "x" << view.height << " receivers, " << strata * strata
               << " rays each)\n";

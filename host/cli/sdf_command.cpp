@@ -25,6 +25,8 @@
 #include <string>
 
 #include "args.h"
+#include "input_limits.h"
+#include "penumbra/output_files.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
 #include "penumbra/reference.h"
@@ -100,7 +102,7 @@ void check_finite(const Image& image, const std::string& path, const std::vector
 
 Image read_channels(const std::string& path, const std::vector<std::string>& names)
 {
-    Image image = read_exr(path, names);
+    Image image = read_exr(path, names, exr_limits());
     if (image.empty()) throw Error(ErrorCategory::InvalidData, "sdf-shade", path + ": the receivers image is empty");
     check_finite(image, path, names);
     return image;
@@ -177,6 +179,7 @@ int sdf_shade_command(const std::vector<std::string>& argv)
         throw UsageError{"give exactly one of --scene and --grid"};
     const std::string rx_path = args.required("--receivers");
     const std::string out_path = args.required("--out");
+    require_safe_outputs({out_path}, {rx_path, args.text("--scene", ""), args.text("--grid", "")}, "sdf-shade");
     const std::string source = args.text("--source", "analytic");
     if (source != "analytic" && source != "grid") throw UsageError{"option --source: '" + source + "' is not analytic or grid"};
     if (args.get("--grid") && args.get("--source")) throw UsageError{"option --source: only with --scene"};
@@ -224,8 +227,9 @@ int sdf_bake_command(const std::vector<std::string>& argv)
         std::cout << kBakeHelp;
         return 0;
     }
-    const reference::Scene scene = resolve_scene(args.required("--scene"));
     const std::string out_path = args.required("--out");
+    require_safe_outputs({out_path}, {args.required("--scene")}, "sdf-bake");
+    const reference::Scene scene = resolve_scene(args.required("--scene"));
     if (args.get("--margin") && !args.get("--voxel")) throw UsageError{"option --margin: only with --voxel"};
     DistanceGrid grid;
     if (args.get("--voxel")) {

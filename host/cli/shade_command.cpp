@@ -9,6 +9,8 @@
 #include <string>
 
 #include "args.h"
+#include "input_limits.h"
+#include "penumbra/output_files.h"
 #include "commands.h"
 #include "penumbra/chebyshev.h"
 #include "penumbra/error.h"
@@ -60,7 +62,7 @@ void check_channel(const Image& image, int c, const std::string& file, const std
 
 Image read_shadow_map(const std::string& path)
 {
-    Image map = read_exr(path, {"Z"});
+    Image map = read_exr(path, {"Z"}, exr_limits());
     if (map.empty()) throw Error(ErrorCategory::InvalidData, "shade", path + ": the shadow map is empty");
     check_channel(map, 0, path, "Z", true);
     return map;
@@ -68,7 +70,7 @@ Image read_shadow_map(const std::string& path)
 
 Image read_receivers(const std::string& path)
 {
-    Image rx = read_exr(path, {"u", "v", "z"});
+    Image rx = read_exr(path, {"u", "v", "z"}, exr_limits());
     if (rx.empty()) throw Error(ErrorCategory::InvalidData, "shade", path + ": the receivers image is empty");
     const char* names[] = {"u", "v", "z"};
     for (int c = 0; c < 3; ++c) check_channel(rx, c, path, names[c], false);
@@ -102,6 +104,7 @@ int shade_command(const std::vector<std::string>& argv)
     const std::string sm_path = args.required("--shadow-map");
     const std::string rx_path = args.required("--receivers");
     const std::string out_path = args.required("--out");
+    require_safe_outputs({out_path}, {sm_path, rx_path}, "shade");
     const int radius = args.integer("--radius", VsmOptions{}.radius);
     const float min_variance = args.number("--min-variance", kDefaultMinVariance);
     const float bleed = args.number("--bleed", 0.0f);

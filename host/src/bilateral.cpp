@@ -3,6 +3,7 @@
 #include "penumbra/bilateral.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -142,6 +143,41 @@ Window window_of(const BilateralOptions& o)
     return window;
 }
 
+// The kernels sum w m over the window in float: with |m| near FLT_MAX (a
+// finite mask of 3e38) the sums overflow to Inf although the weighted mean,
+// which lies between the mask's extremes, is finite. Masks whose largest
+// magnitude exceeds 2^100 are therefore filtered scaled by 2^-k, which is exact
+// (a power of two), so that the peak is at most 2^100 and a sum of up to 2^27
+// taps with weights <= 1 stays below FLT_MAX; the result is scaled back by 2^k.
+// Float rounding can put a mean an ulp beyond the peak, so the scaled-back
+// result is clamped to +-FLT_MAX. (Magnitudes below 2^-149 * 2^k are lost in
+// such a mask: its dynamic range exceeds float's anyway.)
+constexpr int kSafePeakExponent = 100;
+
+int overflow_guard_exponent(const Image& mask)
+{
+    float peak = 0.0f;
+    for (int c = 0; c < mask.channels(); ++c)
+        for (int y = 0; y < mask.height(); ++y) {
+            const float* row = mask.row(c, y);
+            for (int x = 0; x < mask.width(); ++x) peak = std::max(peak, std::abs(row[x]));
+        }
+    if (!(peak > std::ldexp(1.0f, kSafePeakExponent)) || !std::isfinite(peak)) return 0;
+    return std::ilogb(peak) - kSafePeakExponent + 1;
+}
+
+void scale_image(Image& image, int exponent, bool clamp)
+{
+    for (int c = 0; c < image.channels(); ++c)
+        for (int y = 0; y < image.height(); ++y) {
+            float* row = image.row(c, y);
+            for (int x = 0; x < image.width(); ++x) {
+                const float v = std::ldexp(row[x], exponent);
+                row[x] = clamp ? std::clamp(v, -FLT_MAX, FLT_MAX) : v;
+            }
+        }
+}
+
 }  // namespace
 
 Image cross_bilateral(Context& context, const Image& mask, const Image& guide_depth, const BilateralOptions& options,
@@ -159,6 +195,13 @@ void cross_bilateral(Context& context, const Image& mask, const Image& guide_dep
     check_images(mask, guide_depth, guide_normals);
     check_options(options);
     check_output(mask, guide_depth, guide_normals, out);
+    if (const int k = overflow_guard_exponent(mask); k > 0) {
+        Image scaled = mask;
+        scale_image(scaled, -k, false);
+        cross_bilateral(context, scaled, guide_depth, options, out, guide_normals);
+        scale_image(out, k, true);
+        return;
+    }
     const Window window = window_of(options);
     BilateralParams p = make_params(mask, guide_depth, guide_normals, out, options);
     p.taps = int(window.weights.size() / 2);

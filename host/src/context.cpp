@@ -9,6 +9,7 @@
 #include "simd/cpu_backend.h"
 #if PENUMBRA_OPENCL
 #include "cl/opencl_backend.h"
+#include "cl/program_cache.h"
 #endif
 
 namespace penumbra {
@@ -53,6 +54,16 @@ std::unique_ptr<detail::BackendImpl> make_opencl(bool non_cpu_only)
 #endif
 }
 
+// A damaged PoCL cache that was cleared at start-up (cl/pocl_cache_guard.h).
+void add_driver_cache_warning(std::vector<std::string>& warnings)
+{
+#if PENUMBRA_OPENCL
+    if (std::string warning = cl_backend::driver_cache_warning(); !warning.empty()) warnings.push_back(warning);
+#else
+    (void)warnings;
+#endif
+}
+
 bool has_non_cpu_opencl_device()
 {
 #if PENUMBRA_OPENCL
@@ -89,6 +100,7 @@ Context::Context(ContextOptions options)
         impl_ = make_opencl(false);
         backend_ = Backend::OpenCL;
         reason_ = source;
+        add_driver_cache_warning(warnings_);
         break;
     case Backend::Auto:
         if (has_non_cpu_opencl_device()) {
@@ -96,6 +108,7 @@ Context::Context(ContextOptions options)
                 impl_ = make_opencl(true);
                 backend_ = Backend::OpenCL;
                 reason_ = "auto: a non-CPU OpenCL device is present";
+                add_driver_cache_warning(warnings_);
                 break;
             } catch (const Error& e) {
                 warnings_.push_back(std::string("OpenCL device failed to start, using SIMD instead: ") + e.what());

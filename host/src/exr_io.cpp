@@ -7,7 +7,7 @@
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
-#include <OpenEXR/ImfTestFile.h>
+#include <OpenEXR/ImfVersion.h>
 
 #include <Imath/ImathBox.h>
 
@@ -26,7 +26,10 @@
 #include <system_error>
 #include <utility>
 
+#include "exr_validate.h"
 #include "penumbra/error.h"
+#include "penumbra/input_file.h"
+#include "penumbra/output_files.h"
 
 namespace penumbra {
 namespace {
@@ -92,35 +95,50 @@ void require_distinct_names(const std::vector<std::string>& channels, std::strin
 
 // ---------------------------------------------------------------- reading
 
-// What the file system can tell is checked before OpenEXR sees the file, so that
-// a wrong path or a file of another format gets a message that says just that.
-void require_openable_exr(const std::string& path, std::string_view operation)
-{
-    std::error_code error;
-    const fs::file_status status = fs::status(path, error);
-    if (status.type() == fs::file_type::not_found)
-        throw_io(operation, quoted(path) + " does not exist; check the path");
-    if (error) throw_io(operation, quoted(path) + " cannot be accessed (" + error.message() + ")");
-    if (fs::is_directory(status)) throw_io(operation, quoted(path) + " is a directory, not an OpenEXR file");
+// An OpenEXR input stream over a file penumbra opened itself (open_input_file:
+// a regular file, opened without blocking), so that OpenEXR never opens a path.
+class DescriptorInputStream : public Imf::IStream {
+public:
+    explicit DescriptorInputStream(const InputFile& file) : Imf::IStream(file.path().c_str()), file_(file) {}
 
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) {
-        const int error_number = errno;
-        throw_io(operation, quoted(path) + " cannot be opened for reading (" + errno_text(error_number) +
-                                "); check its permissions");
+    bool read(char bytes[], int count) override
+    {
+        if (count < 0 || !file_.read_at(position_, bytes, std::size_t(count)))
+            throw std::runtime_error("unexpected end of file");
+        position_ += std::uint64_t(count);
+        return position_ < file_.size();
     }
-    ::close(fd);
-    if (!Imf::isOpenExrFile(path.c_str()))
+    std::uint64_t tellg() override { return position_; }
+    void seekg(std::uint64_t position) override { position_ = position; }
+
+private:
+    const InputFile& file_;
+    std::uint64_t position_ = 0;
+};
+
+// An EXR opened for reading: the file, the stream over it and OpenEXR's reader.
+struct OpenExr {
+    InputFile file;
+    std::unique_ptr<DescriptorInputStream> stream;
+    std::unique_ptr<Imf::InputFile> reader;
+};
+
+// What the file system can tell is checked before OpenEXR sees the file, so that
+// a wrong path, a FIFO or a file of another format gets a message that says just
+// that; and the header's claims before OpenEXR's reader sizes its tables by them.
+OpenExr open_exr(const std::string& path, std::string_view operation, const ExrReadLimits& limits,
+                 detail::ChunkCheck chunks)
+{
+    OpenExr exr{open_input_file(path, operation), nullptr, nullptr};
+    char magic[4] = {};
+    if (!exr.file.read_at(0, magic, sizeof magic) || !Imf::isImfMagic(magic))
         throw_io(operation, quoted(path) + " is not an OpenEXR file (it lacks the EXR magic number); "
                                            "convert it to .exr first");
-}
-
-std::unique_ptr<Imf::InputFile> open_exr(const std::string& path, std::string_view operation)
-{
-    return translating_exr_exceptions(operation, path, kReadAdvice, [&] {
-        require_openable_exr(path, operation);
-        return std::make_unique<Imf::InputFile>(path.c_str());
-    });
+    detail::validate_exr(exr.file, limits, operation, chunks);
+    exr.stream = std::make_unique<DescriptorInputStream>(exr.file);
+    translating_exr_exceptions(operation, path, kReadAdvice,
+                               [&] { exr.reader = std::make_unique<Imf::InputFile>(*exr.stream); });
+    return exr;
 }
 
 std::vector<std::string> channel_names(const Imf::Header& header)
@@ -267,50 +285,6 @@ void write_exr_pixels(const std::string& temporary_path, const Image& image,
     stream.close();
 }
 
-// ---------------------------------------------------------------- atomic files
-
-// Creates the temporary file exclusively (O_EXCL), so that two writers never
-// share one; mode 0666 lets the umask decide permissions as for any new file.
-std::string create_temporary_beside(const fs::path& target, std::string_view operation)
-{
-    static std::atomic<unsigned> counter{0};
-    const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
-    for (int attempt = 0; attempt < 100; ++attempt) {
-        // Hidden, and named after the target, so a stray one (after a crash) says what it was.
-        std::ostringstream name;
-        name << '.' << target.filename().string() << ".tmp-" << ::getpid() << '-' << counter++;
-        const std::string candidate = (directory / name.str()).string();
-        const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-        if (fd >= 0) {
-            ::close(fd);
-            return candidate;
-        }
-        const int error = errno;
-        if (error == EEXIST) continue;
-        if (error == ENOENT && !fs::is_directory(directory))
-            throw_io(operation, "cannot write " + quoted(target.string()) + ": directory " +
-                                    quoted(directory.string()) + " does not exist; create it first");
-        throw_io(operation, "cannot create a file in " + quoted(directory.string()) + " to write " +
-                                quoted(target.string()) + " (" + errno_text(error) +
-                                "); check that it is a directory you may write to");
-    }
-    throw_io(operation, "cannot find a free temporary name beside " + quoted(target.string()) +
-                            "; remove stale '.*.tmp-*' files from its directory");
-}
-
-// Data written but not yet on disk could be lost in a crash after the rename,
-// leaving an empty target; fsync first. Any descriptor of the file will do.
-void flush_to_disk(const std::string& path)
-{
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0 || ::fsync(fd) != 0) {
-        const int error = errno;
-        if (fd >= 0) ::close(fd);
-        throw std::system_error(error, std::generic_category(), "flushing " + path + " to disk");
-    }
-    ::close(fd);
-}
-
 }  // namespace
 
 namespace detail {
@@ -318,46 +292,32 @@ namespace detail {
 void write_file_atomically(const std::string& path, std::string_view operation,
                            const std::function<void(const std::string& temporary_path)>& write_temporary)
 {
-    const std::string temporary = create_temporary_beside(fs::path(path), operation);
-    try {
-        write_temporary(temporary);
-        flush_to_disk(temporary);
-        // rename(2) replaces the target in one step: readers see the old file or
-        // the new one, never a mix. (A symbolic link as target is replaced, not followed.)
-        if (::rename(temporary.c_str(), path.c_str()) != 0) {
-            const int error_number = errno;
-            throw_io(operation,
-                     "cannot replace " + quoted(path) + " (" + errno_text(error_number) +
-                         "); if a directory of that name is in the way, move it or choose another path");
-        }
-    } catch (const Error&) {
-        ::unlink(temporary.c_str());
-        throw;
-    } catch (const std::exception& e) {
-        ::unlink(temporary.c_str());
-        throw_io(operation, "cannot write " + quoted(path) + ": " + e.what() + std::string(kWriteAdvice));
-    } catch (...) {
-        ::unlink(temporary.c_str());
-        throw;
-    }
+    require_safe_outputs({path}, {}, operation);
+    OutputFiles output{std::string(operation)};
+    output.stage(path, write_temporary);
+    output.publish();
 }
 
 }  // namespace detail
 
 std::vector<std::string> exr_channel_names(const std::string& path)
 {
-    const auto file = open_exr(path, "exr_channel_names");
-    return channel_names(file->header());
+    const OpenExr exr = open_exr(path, "exr_channel_names", {}, detail::ChunkCheck::Skip);
+    return channel_names(exr.reader->header());
 }
 
-Image read_exr(const std::string& path, const std::vector<std::string>& channels)
+Image read_exr(const std::string& path, const std::vector<std::string>& channels, const ExrReadLimits& limits)
 {
     constexpr std::string_view operation = "read_exr";
     require_distinct_names(channels, operation);
-    const auto file = open_exr(path, operation);
+    const OpenExr exr = open_exr(path, operation, limits, detail::ChunkCheck::DecodeEvery);
+    Imf::InputFile* file = exr.reader.get();
     require_channels_present(file->header(), channels, path, operation);
     const Imath::Box2i window = file->header().dataWindow();
     const Extent extent = data_window_extent(window, path, operation);
+    if (!file->isComplete())
+        throw_io(operation, quoted(path) + " is incomplete: its table of chunk offsets lacks some scanlines or tiles" +
+                                std::string(kReadAdvice));
 
     Image image(extent.width, extent.height, int(channels.size()));
     translating_exr_exceptions(operation, path, kReadAdvice, [&] {
@@ -370,6 +330,15 @@ Image read_exr(const std::string& path, const std::vector<std::string>& channels
 void write_exr(const std::string& path, const Image& image, const std::vector<std::string>& channels)
 {
     constexpr std::string_view operation = "write_exr";
+    OutputFiles output{std::string(operation)};
+    stage_exr(output, path, image, channels);
+    output.publish();
+}
+
+void stage_exr(OutputFiles& output, const std::string& path, const Image& image,
+               const std::vector<std::string>& channels)
+{
+    constexpr std::string_view operation = "write_exr";
     require_distinct_names(channels, operation);
     require(int(channels.size()) == image.channels(), operation,
             "the image has " + std::to_string(image.channels()) + " channels but " +
@@ -378,8 +347,8 @@ void write_exr(const std::string& path, const Image& image, const std::vector<st
     require(!image.empty(), operation,
             "the image for " + quoted(path) + " is empty (" + std::to_string(image.width()) + "x" +
                 std::to_string(image.height()) + "); an EXR file needs at least one pixel");
-
-    detail::write_file_atomically(path, operation, [&](const std::string& temporary) {
+    require_safe_outputs({path}, {}, operation);
+    output.stage(path, [&](const std::string& temporary) {
         translating_exr_exceptions(operation, path, kWriteAdvice,
                                    [&] { write_exr_pixels(temporary, image, channels); });
     });

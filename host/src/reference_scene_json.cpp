@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "penumbra/error.h"
+#include "penumbra/input_file.h"
 #include "penumbra/reference_scene.h"
 
 namespace penumbra::reference {
@@ -267,24 +268,25 @@ Scene scene_from_json(std::string_view text, std::string_view source_name)
     json root;
     try {
         root = json::parse(text.begin(), text.end());
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {
+        // parse_error, and out_of_range for a number beyond a double (1e999).
         throw Error(ErrorCategory::Io, kLoad, context + "not valid JSON (" + e.what() + ")");
     }
-    const Scene scene = read_scene(Reader(context), root);
+    Scene scene;
+    try {
+        scene = read_scene(Reader(context), root);
+    } catch (const json::exception& e) {  // a value of the right type but out of its C++ range
+        throw Error(ErrorCategory::InvalidArgument, kLoad, context + e.what());
+    }
     validate_scene(scene, kLoad, context);
     return scene;
 }
 
 Scene load_scene(const std::filesystem::path& path)
 {
-    std::ifstream file(path, std::ios::binary);
-    if (!file)
-        throw Error(ErrorCategory::Io, kLoad,
-                    path.string() + ": cannot open the scene file (check the path and permissions)");
-    std::ostringstream text;
-    text << file.rdbuf();
-    if (file.bad()) throw Error(ErrorCategory::Io, kLoad, path.string() + ": read failed");
-    return scene_from_json(text.str(), path.string());
+    // A regular file of bounded size: `--scene /dev/zero` or a FIFO is refused
+    // before a byte is read (penumbra/input_file.h).
+    return scene_from_json(read_input_file(path.string(), kLoad, kMaxSceneFileBytes), path.string());
 }
 
 std::string scene_to_json(const Scene& scene)

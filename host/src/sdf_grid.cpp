@@ -9,6 +9,7 @@
 
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"  // detail::write_file_atomically
+#include "penumbra/input_file.h"
 #include "penumbra/sdf.h"
 
 namespace penumbra {
@@ -49,16 +50,15 @@ std::string header_bytes(const DistanceGrid& grid)
     throw Error(category, "read_distance_grid", path + ": " + what);
 }
 
-Header read_header(std::ifstream& in, const std::string& path)
+Header read_header(const InputFile& in, const std::string& path)
 {
-    char magic[8] = {};
-    Header h{};
-    in.read(magic, sizeof magic);
-    in.read(reinterpret_cast<char*>(h.n), sizeof h.n);
-    in.read(reinterpret_cast<char*>(h.origin), sizeof h.origin);
-    in.read(reinterpret_cast<char*>(&h.voxel), sizeof h.voxel);
-    if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+    char bytes[kHeaderBytes] = {};
+    if (!in.read_at(0, bytes, sizeof bytes) || std::memcmp(bytes, kMagic, sizeof kMagic) != 0)
         bad_file(ErrorCategory::Io, path, "not a penumbra distance grid (no PNSDFGR1 header)");
+    Header h{};
+    std::memcpy(h.n, bytes + 8, sizeof h.n);
+    std::memcpy(h.origin, bytes + 8 + sizeof h.n, sizeof h.origin);
+    std::memcpy(&h.voxel, bytes + 8 + sizeof h.n + sizeof h.origin, sizeof h.voxel);
     return h;
 }
 
@@ -69,8 +69,15 @@ void check_header(const Header& h, const std::string& path, std::uintmax_t file_
         if (h.n[a] < 2)
             bad_file(ErrorCategory::InvalidData, path, std::string(axes[a]) + " is " + std::to_string(h.n[a]) +
                                                            "; a grid needs at least 2 nodes per axis");
-    const std::size_t nodes = std::size_t(h.n[0]) * std::size_t(h.n[1]) * std::size_t(h.n[2]);
-    if (nodes > kMaxNodes) bad_file(ErrorCategory::InvalidData, path, "more than 2^31 - 1 nodes");
+    // Each axis is below 2^31, so a product of two fits in 64 bits; the third
+    // factor is checked by division first, so the product cannot wrap (with
+    // nx = 2^22, ny = nz = 2^21 it is 2^64, which wrapped to 0 here once).
+    const std::uint64_t plane = std::uint64_t(h.n[0]) * std::uint64_t(h.n[1]);
+    if (plane > kMaxNodes || std::uint64_t(h.n[2]) > kMaxNodes / plane)
+        bad_file(ErrorCategory::InvalidData, path,
+                 std::to_string(h.n[0]) + "x" + std::to_string(h.n[1]) + "x" + std::to_string(h.n[2]) +
+                     " is more than 2^31 - 1 nodes");
+    const std::uint64_t nodes = plane * std::uint64_t(h.n[2]);
     if (!(std::isfinite(h.voxel) && h.voxel > 0.0f))
         bad_file(ErrorCategory::InvalidData, path,
                  "voxel size is " + std::to_string(h.voxel) + "; it must be finite and > 0");
@@ -135,18 +142,16 @@ void write_distance_grid(const std::string& path, const DistanceGrid& grid)
     });
 }
 
+// The file's size (fstat of the opened file) must be exactly what the header
+// implies, and the node count is bounded, before the grid is allocated.
 DistanceGrid read_distance_grid(const std::string& path)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) bad_file(ErrorCategory::Io, path, "cannot be opened (missing or unreadable)");
-    in.seekg(0, std::ios::end);
-    const std::uintmax_t bytes = std::uintmax_t(in.tellg());
-    in.seekg(0);
+    const InputFile in = open_input_file(path, "read_distance_grid");
     const Header h = read_header(in, path);
-    check_header(h, path, bytes);
+    check_header(h, path, in.size());
     DistanceGrid grid(h.n[0], h.n[1], h.n[2], {h.origin[0], h.origin[1], h.origin[2]}, h.voxel);
-    in.read(reinterpret_cast<char*>(grid.data()), std::streamsize(grid.size() * sizeof(float)));
-    if (!in) bad_file(ErrorCategory::Io, path, "cannot read the distances (truncated)");
+    if (!in.read_at(kHeaderBytes, grid.data(), grid.size() * sizeof(float)))
+        bad_file(ErrorCategory::Io, path, "cannot read the distances (truncated)");
     check_nodes(grid, path);
     return grid;
 }

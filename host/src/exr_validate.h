@@ -1,0 +1,34 @@
+// Checks an EXR file before OpenEXR's C++ reader allocates or decodes anything
+// (docs/robustness.md, "EXR inputs"); used by read_exr (exr_io.cpp).
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "penumbra/exr_io.h"
+#include "penumbra/input_file.h"
+
+namespace penumbra::detail {
+
+// Throws Error(Io) naming the file unless, for the first part of `file`:
+//  - the data window holds at most limits.max_pixels pixels;
+//  - its decoded size (every channel of the file, not only those asked for) is
+//    at most the file's size times the largest expansion its compression can
+//    reach (exr_max_expansion, where the format bounds it), so that a small
+//    file cannot claim a huge image;
+//  - every chunk (scanline block, or tile of level 0) is present in the offset
+//    table, and decompresses without error to exactly the size its header
+//    implies, so that no pixel is computed from memory the file never filled.
+//    (Skip: only the header's claims, for callers that read no pixels.)
+//    DWAA and DWAB chunks are checked to be present only: OpenEXR 3.1's core
+//    library cannot decode them, so their completeness rests on its C++ reader.
+enum class ChunkCheck { DecodeEvery, Skip };
+void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::string_view operation,
+                  ChunkCheck chunks);
+
+// Decoded bytes per stored byte, at most, for an OpenEXR compression code
+// (exr_compression_t), or 0 where the format sets no useful bound; the
+// figures and their sources are in exr_validate.cpp.
+double exr_max_expansion(int compression);
+
+}  // namespace penumbra::detail

@@ -1,0 +1,319 @@
+// All-or-nothing publication of output files (penumbra/output_files.h).
+#include "penumbra/output_files.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <mutex>
+#include <set>
+#include <system_error>
+
+#include "penumbra/error.h"
+#include "penumbra/input_file.h"  // file_type_name
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string in_quotes(const std::string& text) { return "'" + text + "'"; }
+std::string errno_text(int code) { return std::generic_category().message(code); }
+
+[[noreturn]] void throw_io(std::string_view operation, const std::string& message)
+{
+    throw Error(ErrorCategory::Io, operation, message);
+}
+
+
+fs::path directory_of(const fs::path& target) { return target.has_parent_path() ? target.parent_path() : "."; }
+
+// ---------------------------------------------------------------- signal cleanup
+
+// Named temporaries (the fallback, and the moment between link and rename)
+// are listed here so that SIGINT, SIGTERM and SIGHUP remove them. The handler
+// may only call async-signal-safe functions: it walks a fixed array of
+// pointers to strings that stay alive while they are listed, and unlink()s.
+constexpr int kSlots = 256;
+std::atomic<const char*> g_named[kSlots];
+
+extern "C" void remove_named_and_reraise(int signal_number)
+{
+    for (auto& slot : g_named)
+        if (const char* name = slot.load()) ::unlink(name);
+    ::signal(signal_number, SIG_DFL);
+    ::raise(signal_number);
+}
+
+void install_cleanup_handlers()
+{
+    static std::once_flag once;
+    std::call_once(once, [] {
+        for (int s : {SIGINT, SIGTERM, SIGHUP}) {
+            struct sigaction previous {};
+            ::sigaction(s, nullptr, &previous);
+            if (previous.sa_handler != SIG_DFL) continue;  // the program has its own policy
+            struct sigaction action {};
+            action.sa_handler = remove_named_and_reraise;
+            sigemptyset(&action.sa_mask);
+            ::sigaction(s, &action, nullptr);
+        }
+    });
+}
+
+// Lists a name for the handler; unlisted when destroyed.
+class NamedTemporary {
+public:
+    NamedTemporary() = default;
+    ~NamedTemporary() { release(); }
+    // Lists `name` (before the file exists, so that no moment is unguarded).
+    void assign(std::string name)
+    {
+        release();
+        name_ = std::move(name);
+        install_cleanup_handlers();
+        for (auto& slot : g_named) {
+            const char* empty = nullptr;
+            if (slot.compare_exchange_strong(empty, name_.c_str())) {
+                slot_ = &slot;
+                return;
+            }
+        }
+    }
+    NamedTemporary(const NamedTemporary&) = delete;
+    NamedTemporary& operator=(const NamedTemporary&) = delete;
+
+    const std::string& name() const { return name_; }
+    bool empty() const { return name_.empty(); }
+    void remove()
+    {
+        if (!name_.empty()) ::unlink(name_.c_str());
+        release();
+    }
+    // The file now has its final name: stop removing it.
+    void release()
+    {
+        if (slot_) slot_->store(nullptr);
+        slot_ = nullptr;
+        name_.clear();
+    }
+
+private:
+    std::string name_;
+    std::atomic<const char*>* slot_ = nullptr;
+};
+
+std::string hidden_name_beside(const fs::path& target)
+{
+    static std::atomic<unsigned> counter{0};
+    // Hidden, and named after the target, so a stray one says what it was.
+    return (directory_of(target) / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                                    std::to_string(counter++)))
+        .string();
+}
+
+[[noreturn]] void cannot_create_in(std::string_view operation, const fs::path& target, int error)
+{
+    const fs::path directory = directory_of(target);
+    std::error_code ignored;
+    if (error == ENOENT && !fs::is_directory(directory, ignored))
+        throw_io(operation, "cannot write " + in_quotes(target.string()) + ": directory " + in_quotes(directory.string()) +
+                                " does not exist; create it first");
+    throw_io(operation, "cannot create a file in " + in_quotes(directory.string()) + " to write " +
+                            in_quotes(target.string()) + " (" + errno_text(error) +
+                            "); check that it is a directory you may write to");
+}
+
+void flush_to_disk(int fd, const std::string& what)
+{
+    if (::fsync(fd) != 0) throw std::system_error(errno, std::generic_category(), "flushing " + what + " to disk");
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- one staged file
+
+struct OutputFiles::Staged {
+    std::string target;
+    int fd = -1;              // the O_TMPFILE descriptor, or -1 in the fallback
+    NamedTemporary named;     // the fallback's file, or the linked name before rename
+    ~Staged()
+    {
+        named.remove();
+        if (fd >= 0) ::close(fd);
+    }
+    std::string writer_path() const { return fd >= 0 ? "/proc/self/fd/" + std::to_string(fd) : named.name(); }
+};
+
+namespace {
+
+// An unnamed file in the target's directory, reachable for writing through
+// /proc/self/fd/N; -1 (errno set) when the file system or /proc do not allow it.
+int open_unnamed_beside(const fs::path& target)
+{
+#ifdef O_TMPFILE
+    const int fd = ::open(directory_of(target).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+    if (fd < 0) return -1;
+    if (::access(("/proc/self/fd/" + std::to_string(fd)).c_str(), F_OK) != 0) {
+        ::close(fd);
+        errno = EOPNOTSUPP;
+        return -1;
+    }
+    // O_TMPFILE files start with mode 0666 & ~umask, like any new file.
+    return fd;
+#else
+    (void)target;
+    errno = EOPNOTSUPP;
+    return -1;
+#endif
+}
+
+bool unnamed_unsupported(int error) { return error == EOPNOTSUPP || error == EISDIR || error == EINVAL; }
+
+void create_named_beside(const fs::path& target, std::string_view operation, NamedTemporary& named)
+{
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        named.assign(hidden_name_beside(target));
+        const int fd = ::open(named.name().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0) {
+            ::close(fd);
+            return;
+        }
+        const int error = errno;
+        named.release();
+        if (error != EEXIST) cannot_create_in(operation, target, error);
+    }
+    throw_io(operation, "cannot find a free temporary name beside " + in_quotes(target.string()) +
+                            "; remove stale '.*.tmp-*' files from its directory");
+}
+
+// Gives the unnamed file a hidden name beside its target (linkat through
+// /proc/self/fd: AT_EMPTY_PATH would need CAP_DAC_READ_SEARCH).
+void link_unnamed(OutputFiles::Staged& file, std::string_view operation)
+{
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        std::string name = hidden_name_beside(file.target);
+        file.named.assign(name);
+        if (::linkat(AT_FDCWD, file.writer_path().c_str(), AT_FDCWD, name.c_str(), AT_SYMLINK_FOLLOW) == 0) return;
+        const int error = errno;
+        file.named.release();
+        if (error != EEXIST) cannot_create_in(operation, file.target, error);
+    }
+    throw_io(operation, "cannot find a free temporary name beside " + in_quotes(file.target));
+}
+
+}  // namespace
+
+OutputFiles::OutputFiles(std::string operation) : operation_(std::move(operation)) {}
+OutputFiles::~OutputFiles() = default;
+
+void OutputFiles::stage(const std::string& path, const std::function<void(const std::string& temporary)>& write)
+{
+    auto file = std::make_unique<Staged>();
+    file->target = path;
+    file->fd = open_unnamed_beside(path);
+    if (file->fd < 0) {
+        if (!unnamed_unsupported(errno)) cannot_create_in(operation_, path, errno);
+        create_named_beside(path, operation_, file->named);
+    }
+    try {
+        write(file->writer_path());
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw_io(operation_, "cannot write " + in_quotes(path) + ": " + e.what() +
+                                 "; check free disk space and write permission");
+    }
+    staged_.push_back(std::move(file));
+}
+
+void OutputFiles::publish()
+{
+    try {
+        publish_all();
+    } catch (...) {
+        staged_.clear();  // each unpublished temporary is removed now, not when *this dies
+        throw;
+    }
+}
+
+void OutputFiles::publish_all()
+{
+    try {
+        for (auto& file : staged_) {
+            if (file->fd >= 0) {
+                flush_to_disk(file->fd, file->target);
+                link_unnamed(*file, operation_);
+            } else {
+                const int fd = ::open(file->named.name().c_str(), O_RDONLY | O_CLOEXEC);
+                if (fd < 0) throw std::system_error(errno, std::generic_category(), "reopening " + file->target);
+                const int result = ::fsync(fd);
+                ::close(fd);
+                if (result != 0) throw std::system_error(errno, std::generic_category(), "flushing " + file->target);
+            }
+        }
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw_io(operation_, std::string(e.what()) + "; no output was replaced; check free disk space");
+    }
+    // rename(2) replaces each target in one step: readers see the old file or
+    // the new one, never a mix. (A symbolic link as target is replaced, not followed.)
+    std::vector<std::string> done;
+    for (auto& file : staged_) {
+        if (::rename(file->named.name().c_str(), file->target.c_str()) != 0) {
+            const int error = errno;
+            std::string message = "cannot replace " + in_quotes(file->target) + " (" + errno_text(error) + ")";
+            if (done.empty()) message += "; no output was replaced";
+            else {
+                message += "; already replaced:";
+                for (const std::string& d : done) message += " " + in_quotes(d);
+                message += "; not replaced: every other output";
+            }
+            throw_io(operation_, message + "; if a directory of that name is in the way, move it or choose another path");
+        }
+        file->named.release();
+        done.push_back(file->target);
+    }
+    staged_.clear();
+}
+
+// ---------------------------------------------------------------- target checks
+
+void require_safe_outputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs,
+                          std::string_view operation)
+{
+    std::set<std::pair<dev_t, ino_t>> input_ids;
+    for (const std::string& input : inputs) {
+        struct stat status {};
+        if (!input.empty() && ::stat(input.c_str(), &status) == 0) input_ids.insert({status.st_dev, status.st_ino});
+    }
+    std::set<std::string> seen;
+    for (const std::string& output : outputs) {
+        if (output.empty()) throw_io(operation, "an output file name is empty");
+        struct stat status {};
+        const fs::path directory = directory_of(output);
+        if (::stat(directory.c_str(), &status) != 0 || !S_ISDIR(status.st_mode))
+            throw_io(operation, "cannot write " + in_quotes(output) + ": directory " + in_quotes(directory.string()) +
+                                    " does not exist; create it first");
+        if (::lstat(output.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISLNK(status.st_mode))
+            throw_io(operation,
+                    in_quotes(output) + " is " + file_type_name(status.st_mode) +
+                        "; an output must be a regular file (or a new name), choose another path");
+        if (::stat(output.c_str(), &status) == 0)
+            if (input_ids.count({status.st_dev, status.st_ino}))
+                throw_io(operation, in_quotes(output) +
+                                        " is one of the inputs; writing it would destroy that input, choose another path");
+        std::error_code ignored;
+        const fs::path absolute = fs::weakly_canonical(fs::absolute(output, ignored), ignored);
+        if (!seen.insert(absolute.empty() ? output : absolute.string()).second)
+            throw_io(operation, in_quotes(output) + " is given as two outputs; give each output its own path");
+    }
+}
+
+}  // namespace penumbra

@@ -1,0 +1,172 @@
+// All-or-nothing publication (penumbra/output_files.h; issue 11, defects 6 and
+// 7): a failed set leaves every target as it was and no temporary behind; an
+// interrupted process (SIGKILL, SIGINT, SIGTERM while writing a large file)
+// leaves nothing either, because the data lives in an unnamed O_TMPFILE.
+#include "penumbra/output_files.h"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <thread>
+
+#include "penumbra/error.h"
+#include "support/cli.h"
+#include "support/run_cli.h"
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+class AtomicOutput : public testing::CliFixture {
+protected:
+    std::vector<std::string> entries() const
+    {
+        std::vector<std::string> names;
+        for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+    void write_text(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
+};
+
+void write_text_to(const std::string& file, const std::string& text)
+{
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out << text;
+    if (!out.flush()) throw std::runtime_error("write failed");
+}
+
+TEST_F(AtomicOutput, PublishesEveryFileAndLeavesNoTemporary)
+{
+    write_text("a", "old a");
+    OutputFiles out("test");
+    out.stage(path("a"), [](const std::string& t) { write_text_to(t, "new a"); });
+    out.stage(path("b"), [](const std::string& t) { write_text_to(t, "new b"); });
+    EXPECT_EQ(testing::slurp(path("a")), "old a") << "replaced before publish()";
+    EXPECT_FALSE(fs::exists(path("b")));
+    out.publish();
+    EXPECT_EQ(testing::slurp(path("a")), "new a");
+    EXPECT_EQ(testing::slurp(path("b")), "new b");
+    EXPECT_EQ(entries(), (std::vector<std::string>{"a", "b"}));
+}
+
+TEST_F(AtomicOutput, AFailingWriterLeavesEveryTargetAsItWas)
+{
+    write_text("a", "old a");
+    write_text("b", "old b");
+    {
+        OutputFiles out("test");
+        out.stage(path("a"), [](const std::string& t) { write_text_to(t, "new a"); });
+        EXPECT_THROW(out.stage(path("b"), [](const std::string&) { throw std::runtime_error("disk full"); }), Error);
+    }  // destroyed unpublished
+    EXPECT_EQ(testing::slurp(path("a")), "old a");
+    EXPECT_EQ(testing::slurp(path("b")), "old b");
+    EXPECT_EQ(entries(), (std::vector<std::string>{"a", "b"}));
+}
+
+// rename(2) cannot put a file over a directory: the message says what was replaced.
+TEST_F(AtomicOutput, AFailedRenameSaysWhatIsWhere)
+{
+    fs::create_directory(path("b"));
+    OutputFiles out("test");
+    out.stage(path("a"), [](const std::string& t) { write_text_to(t, "new a"); });
+    out.stage(path("b"), [](const std::string& t) { write_text_to(t, "new b"); });
+    try {
+        out.publish();
+        ADD_FAILURE() << "publish() over a directory succeeded";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.category(), ErrorCategory::Io);
+        EXPECT_NE(std::string(e.what()).find("already replaced: '" + path("a") + "'"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(testing::slurp(path("a")), "new a");
+    EXPECT_TRUE(fs::is_directory(path("b")));
+    EXPECT_EQ(entries(), (std::vector<std::string>{"a", "b"}));
+}
+
+TEST_F(AtomicOutput, UnsafeTargetsAreRefusedUpFront)
+{
+    write_text("in", "input");
+    ASSERT_EQ(::link(path("in").c_str(), path("alias").c_str()), 0);
+    ASSERT_EQ(::symlink(path("in").c_str(), path("symlink").c_str()), 0);
+    auto refused = [&](const std::vector<std::string>& outs, const std::string& fragment) {
+        try {
+            require_safe_outputs(outs, {path("in")}, "test");
+            ADD_FAILURE() << "accepted " << outs.front();
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+        }
+    };
+    refused({path("in")}, "one of the inputs");
+    refused({path("alias")}, "one of the inputs");
+    refused({path("symlink")}, "one of the inputs");
+    refused({path("x"), dir_.string() + "/./x"}, "two outputs");
+    refused({"/dev/null"}, "character device");
+    refused({dir_.string()}, "directory");
+    refused({path("no/such/dir/x")}, "does not exist");
+    EXPECT_NO_THROW(require_safe_outputs({path("new"), path("other")}, {path("in")}, "test"));
+}
+
+// A child writes a large file through OutputFiles and is killed mid-write;
+// the directory must hold only the marker it wrote before starting.
+void expect_nothing_left_after(int signal_number, const fs::path& dir)
+{
+    const fs::path marker = dir / "started";
+    const pid_t child = ::fork();
+    if (child == 0) {
+        OutputFiles out("test");
+        out.stage((dir / "big.bin").string(), [&](const std::string& temporary) {
+            std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+            const std::string block(1 << 20, 'x');
+            for (int i = 0; i < 64; ++i) file << block;
+            file.flush();
+            std::ofstream(marker) << "1";
+            for (;;) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        });
+        ::_exit(3);
+    }
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!fs::exists(marker) && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ASSERT_TRUE(fs::exists(marker)) << "the child never started writing";
+    ::kill(child, signal_number);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal_number) << "status " << status;
+    std::vector<std::string> left;
+    for (const auto& entry : fs::directory_iterator(dir)) left.push_back(entry.path().filename().string());
+    EXPECT_EQ(left, (std::vector<std::string>{"started"})) << "signal " << signal_number;
+    fs::remove(marker);
+}
+
+TEST_F(AtomicOutput, SigkillDuringAWriteLeavesNoTemporary) { expect_nothing_left_after(SIGKILL, dir_); }
+TEST_F(AtomicOutput, SigintDuringAWriteLeavesNoTemporary) { expect_nothing_left_after(SIGINT, dir_); }
+TEST_F(AtomicOutput, SigtermDuringAWriteLeavesNoTemporary) { expect_nothing_left_after(SIGTERM, dir_); }
+
+// The real tool, killed while it writes a 256 MiB map.
+TEST_F(AtomicOutput, KilledExampleLeavesNoTemporary)
+{
+    const pid_t child = ::fork();
+    if (child == 0) {
+        ::execl(PENUMBRA_CLI_PATH, PENUMBRA_CLI_PATH, "example", "--out", dir_.c_str(), "--map-size", "8192",
+                static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(700));
+    ::kill(child, SIGKILL);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+        const std::string name = entry.path().filename().string();
+        EXPECT_TRUE(name == "shadow_map.exr" || name == "receivers.exr") << "left behind: " << name;
+    }
+}
+
+}  // namespace
+}  // namespace penumbra
