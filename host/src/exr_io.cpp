@@ -41,8 +41,6 @@ constexpr std::string_view kWriteAdvice = "; check free disk space and write per
 
 std::string quoted(const std::string& text) { return "'" + text + "'"; }
 
-std::string errno_text(int code) { return std::generic_category().message(code); }
-
 [[noreturn]] void throw_io(std::string_view operation, const std::string& message)
 {
     throw Error(ErrorCategory::Io, operation, message);
