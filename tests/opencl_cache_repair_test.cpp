@@ -90,6 +90,9 @@ TEST_F(OpenClCacheRepair, UnusableCacheFolderIsNamedAsSuch)
         EXPECT_NE(run.err.find(cache), std::string::npos) << run.err;
         EXPECT_NE(run.err.find("PENUMBRA_CACHE_DIR"), std::string::npos) << run.err;
         EXPECT_EQ(run.err.find("install pocl"), std::string::npos) << run.err;
+        const auto info = run_cli({"info"}, {{"PENUMBRA_CACHE_DIR", cache}, {"POCL_CACHE_DIR", ""}});
+        EXPECT_EQ(info.exit_code, 0) << info.err;
+        EXPECT_NE(info.out.find("cannot be used"), std::string::npos) << info.out;
     }
 }
 
