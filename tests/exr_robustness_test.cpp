@@ -161,7 +161,7 @@ TEST_F(ExrRobustness, GenuineFilesInEveryCompressionAreRead)
 {
     const int width = 257, height = 131;
     for (int c = Imf::NO_COMPRESSION; c < Imf::NUM_COMPRESSION_METHODS; ++c) {
-        const std::string file = path("c" + std::to_string(c) + ".exr");
+        const std::string file = path(std::to_string(c) + "-compression.exr");
         for (const Imf::PixelType type : {Imf::FLOAT, Imf::HALF}) {
             Imf::Header header(width, height);
             header.compression() = Imf::Compression(c);

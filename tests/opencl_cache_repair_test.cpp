@@ -83,7 +83,7 @@ TEST_F(OpenClCacheRepair, EveryKindOfDamageIsRepairedBeforeUse)
 TEST_F(OpenClCacheRepair, UnusableCacheFolderIsNamedAsSuch)
 {
     { std::ofstream(path("plain")) << "x"; }
-    for (const std::string cache : {path("plain"), std::string("/proc/penumbra-cache")}) {
+    for (const std::string& cache : {path("plain"), std::string("/proc/penumbra-cache")}) {
         const auto run = shade(cache);
         if (run.exit_code == 0) continue;  // a driver that needs no cache folder
         EXPECT_TRUE(run.refused_cleanly()) << run.err;

@@ -112,9 +112,13 @@ std::string hidden_name_beside(const fs::path& target)
 {
     static std::atomic<unsigned> counter{0};
     // Hidden, and named after the target, so a stray one says what it was.
-    return (directory_of(target) / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                                    std::to_string(counter++)))
-        .string();
+    std::string name = ".";
+    name += target.filename().string();
+    name += ".tmp-";
+    name += std::to_string(::getpid());
+    name += '-';
+    name += std::to_string(counter++);
+    return (directory_of(target) / name).string();
 }
 
 [[noreturn]] void cannot_create_in(std::string_view operation, const fs::path& target, int error)
@@ -272,7 +276,10 @@ void OutputFiles::publish_all()
             if (done.empty()) message += "; no output was replaced";
             else {
                 message += "; already replaced:";
-                for (const std::string& d : done) message += " " + in_quotes(d);
+                for (const std::string& d : done) {
+                    message += ' ';
+                    message += in_quotes(d);
+                }
                 message += "; not replaced: every other output";
             }
             throw_io(operation_, message + "; if a directory of that name is in the way, move it or choose another path");
