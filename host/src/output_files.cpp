@@ -8,7 +8,9 @@
 #include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
+#include <string_view>
 #include <filesystem>
 #include <mutex>
 #include <set>
@@ -161,6 +163,12 @@ namespace {
 int open_unnamed_beside(const fs::path& target)
 {
 #ifdef O_TMPFILE
+    // For file systems that accept O_TMPFILE but fail linkat() on it (some FUSE
+    // mounts), and for the tests of the fallback.
+    if (const char* off = std::getenv("PENUMBRA_NO_O_TMPFILE"); off && *off && std::string_view(off) != "0") {
+        errno = EOPNOTSUPP;
+        return -1;
+    }
     const int fd = ::open(directory_of(target).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
     if (fd < 0) return -1;
     if (::access(("/proc/self/fd/" + std::to_string(fd)).c_str(), F_OK) != 0) {
