@@ -10,12 +10,12 @@
 #include <vector>
 
 #include "args.h"
-#include "input_limits.h"
-#include "penumbra/output_files.h"
 #include "commands.h"
+#include "input_limits.h"
 #include "penumbra/bilateral.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
+#include "penumbra/output_files.h"
 
 namespace penumbra::cli {
 namespace {

@@ -26,9 +26,9 @@
 
 #include "args.h"
 #include "input_limits.h"
-#include "penumbra/output_files.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
+#include "penumbra/output_files.h"
 #include "penumbra/reference.h"
 #include "penumbra/sdf.h"
 #include "penumbra/sdf_scene.h"
