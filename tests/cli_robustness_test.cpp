@@ -222,6 +222,15 @@ TEST_F(CliRobustness, MaxPixelsIsAnOptionOfEveryImageReader)
     EXPECT_REFUSED(run_cli({"blur", "--max-pixels", "10", "--in", map(), "--guide", map(), "--out", path("o.exr")}),
                    "shadow_map.exr");
     EXPECT_REFUSED(run_cli({"shade", "--max-pixels", "zero"}), "--max-pixels");
+    // blur lists the mask's channels first: that look honours the limit too, both ways.
+    EXPECT_EQ(run_cli({"blur", "--max-pixels", "65536", "--in", map(), "--guide", map(), "--out", path("b.exr"),
+                       "--backend", "simd"})
+                  .exit_code,
+              0);
+    EXPECT_NE(run_cli({"blur", "--max-pixels", "65535", "--in", map(), "--guide", map(), "--out", path("b.exr"),
+                       "--backend", "simd"})
+                  .err.find("more than the limit of 65535"),
+              std::string::npos);
     EXPECT_EQ(run_cli({"shade", "--method", "vsm", "--shadow-map", map(), "--receivers", receivers(), "--out",
                        path("o.exr"), "--max-pixels", "76800", "--backend", "simd"})
                   .exit_code,

@@ -298,9 +298,9 @@ void write_file_atomically(const std::string& path, std::string_view operation,
 
 }  // namespace detail
 
-std::vector<std::string> exr_channel_names(const std::string& path)
+std::vector<std::string> exr_channel_names(const std::string& path, const ExrReadLimits& limits)
 {
-    const OpenExr exr = open_exr(path, "exr_channel_names", {}, detail::ChunkCheck::Skip);
+    const OpenExr exr = open_exr(path, "exr_channel_names", limits, detail::ChunkCheck::Skip);
     return channel_names(exr.reader->header());
 }
 
