@@ -288,6 +288,8 @@ DeviceList list_devices()
     Discovery discovery = discover();
     DeviceList list;
     list.problem = std::move(discovery.problem);
+    // PoCL hides its device when its cache folder is unusable: say that instead.
+    if (discovery.found.empty() && !driver_cache_problem().empty()) list.problem = driver_cache_problem();
     for (FoundDevice& found : discovery.found) list.devices.push_back(std::move(found.info));
     return list;
 }

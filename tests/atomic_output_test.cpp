@@ -114,12 +114,14 @@ TEST_F(AtomicOutput, UnsafeTargetsAreRefusedUpFront)
 }
 
 // A child writes a large file through OutputFiles and is killed mid-write;
-// the directory must hold only the marker it wrote before starting.
-void expect_nothing_left_after(int signal_number, const fs::path& dir)
+// the directory must hold only the marker it wrote before starting. With
+// `named`, the child uses the named-temporary fallback (PENUMBRA_NO_O_TMPFILE).
+void expect_nothing_left_after(int signal_number, const fs::path& dir, bool named = false)
 {
     const fs::path marker = dir / "started";
     const pid_t child = ::fork();
     if (child == 0) {
+        if (named) ::setenv("PENUMBRA_NO_O_TMPFILE", "1", 1);
         OutputFiles out("test");
         out.stage((dir / "big.bin").string(), [&](const std::string& temporary) {
             std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
@@ -148,6 +150,35 @@ void expect_nothing_left_after(int signal_number, const fs::path& dir)
 TEST_F(AtomicOutput, SigkillDuringAWriteLeavesNoTemporary) { expect_nothing_left_after(SIGKILL, dir_); }
 TEST_F(AtomicOutput, SigintDuringAWriteLeavesNoTemporary) { expect_nothing_left_after(SIGINT, dir_); }
 TEST_F(AtomicOutput, SigtermDuringAWriteLeavesNoTemporary) { expect_nothing_left_after(SIGTERM, dir_); }
+
+// The fallback: named temporaries, removed by the signal handler.
+TEST_F(AtomicOutput, NamedFallbackRemovesItsTemporaryOnSigint) { expect_nothing_left_after(SIGINT, dir_, true); }
+TEST_F(AtomicOutput, NamedFallbackRemovesItsTemporaryOnSigterm) { expect_nothing_left_after(SIGTERM, dir_, true); }
+
+TEST_F(AtomicOutput, NamedFallbackPublishesAndCleansUp)
+{
+    ::setenv("PENUMBRA_NO_O_TMPFILE", "1", 1);
+    write_text("a", "old a");
+    {
+        OutputFiles out("test");
+        out.stage(path("a"), [](const std::string& t) { write_text_to(t, "new a"); });
+        out.stage(path("b"), [](const std::string& t) {
+            EXPECT_EQ(t.find("/proc/self/fd/"), std::string::npos) << "not the fallback: " << t;
+            write_text_to(t, "new b");
+        });
+        EXPECT_EQ(entries().size(), 3u) << "the fallback names its temporaries";
+        out.publish();
+    }
+    {
+        OutputFiles out("test");
+        out.stage(path("a"), [](const std::string& t) { write_text_to(t, "newer a"); });
+        EXPECT_THROW(out.stage(path("b"), [](const std::string&) { throw std::runtime_error("disk full"); }), Error);
+    }
+    ::unsetenv("PENUMBRA_NO_O_TMPFILE");
+    EXPECT_EQ(testing::slurp(path("a")), "new a");
+    EXPECT_EQ(testing::slurp(path("b")), "new b");
+    EXPECT_EQ(entries(), (std::vector<std::string>{"a", "b"}));
+}
 
 // The real tool, killed while it writes a 256 MiB map.
 TEST_F(AtomicOutput, KilledExampleLeavesNoTemporary)

@@ -83,13 +83,16 @@ TEST_F(OpenClCacheRepair, EveryKindOfDamageIsRepairedBeforeUse)
 TEST_F(OpenClCacheRepair, UnusableCacheFolderIsNamedAsSuch)
 {
     { std::ofstream(path("plain")) << "x"; }
-    for (const std::string cache : {path("plain"), std::string("/proc/penumbra-cache")}) {
+    for (const std::string& cache : {path("plain"), std::string("/proc/penumbra-cache")}) {
         const auto run = shade(cache);
         if (run.exit_code == 0) continue;  // a driver that needs no cache folder
         EXPECT_TRUE(run.refused_cleanly()) << run.err;
         EXPECT_NE(run.err.find(cache), std::string::npos) << run.err;
         EXPECT_NE(run.err.find("PENUMBRA_CACHE_DIR"), std::string::npos) << run.err;
         EXPECT_EQ(run.err.find("install pocl"), std::string::npos) << run.err;
+        const auto info = run_cli({"info"}, {{"PENUMBRA_CACHE_DIR", cache}, {"POCL_CACHE_DIR", ""}});
+        EXPECT_EQ(info.exit_code, 0) << info.err;
+        EXPECT_NE(info.out.find("cannot be used"), std::string::npos) << info.out;
     }
 }
 

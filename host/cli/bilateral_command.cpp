@@ -10,12 +10,12 @@
 #include <vector>
 
 #include "args.h"
-#include "input_limits.h"
-#include "penumbra/output_files.h"
 #include "commands.h"
+#include "input_limits.h"
 #include "penumbra/bilateral.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
+#include "penumbra/output_files.h"
 
 namespace penumbra::cli {
 namespace {
@@ -86,7 +86,7 @@ BilateralOptions parse_options(const Args& args)
 
 Image read_mask(const std::string& path, std::vector<std::string>& names)
 {
-    names = exr_channel_names(path);
+    names = exr_channel_names(path, exr_limits());
     if (names.empty() || names.size() > std::size_t(kBilateralMaxChannels))
         throw Error(ErrorCategory::InvalidData, "blur",
                     path + ": has " + std::to_string(names.size()) + " channels (" + channel_list(names) +

@@ -26,9 +26,9 @@
 
 #include "args.h"
 #include "input_limits.h"
-#include "penumbra/output_files.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
+#include "penumbra/output_files.h"
 #include "penumbra/reference.h"
 #include "penumbra/sdf.h"
 #include "penumbra/sdf_scene.h"
@@ -110,7 +110,7 @@ Image read_channels(const std::string& path, const std::vector<std::string>& nam
 
 bool has_normals(const std::string& path)
 {
-    const std::vector<std::string> names = exr_channel_names(path);
+    const std::vector<std::string> names = exr_channel_names(path, exr_limits());
     auto has = [&](const char* n) { return std::find(names.begin(), names.end(), n) != names.end(); };
     return has("N.x") && has("N.y") && has("N.z");
 }

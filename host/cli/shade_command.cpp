@@ -9,13 +9,13 @@
 #include <string>
 
 #include "args.h"
-#include "input_limits.h"
-#include "penumbra/output_files.h"
 #include "commands.h"
+#include "input_limits.h"
 #include "penumbra/chebyshev.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
 #include "penumbra/moment_table.h"
+#include "penumbra/output_files.h"
 #include "moments_command.h"
 
 namespace penumbra::cli {

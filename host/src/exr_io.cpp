@@ -41,8 +41,6 @@ constexpr std::string_view kWriteAdvice = "; check free disk space and write per
 
 std::string quoted(const std::string& text) { return "'" + text + "'"; }
 
-std::string errno_text(int code) { return std::generic_category().message(code); }
-
 [[noreturn]] void throw_io(std::string_view operation, const std::string& message)
 {
     throw Error(ErrorCategory::Io, operation, message);
@@ -300,9 +298,9 @@ void write_file_atomically(const std::string& path, std::string_view operation,
 
 }  // namespace detail
 
-std::vector<std::string> exr_channel_names(const std::string& path)
+std::vector<std::string> exr_channel_names(const std::string& path, const ExrReadLimits& limits)
 {
-    const OpenExr exr = open_exr(path, "exr_channel_names", {}, detail::ChunkCheck::Skip);
+    const OpenExr exr = open_exr(path, "exr_channel_names", limits, detail::ChunkCheck::Skip);
     return channel_names(exr.reader->header());
 }
 
@@ -310,7 +308,7 @@ Image read_exr(const std::string& path, const std::vector<std::string>& channels
 {
     constexpr std::string_view operation = "read_exr";
     require_distinct_names(channels, operation);
-    const OpenExr exr = open_exr(path, operation, limits, detail::ChunkCheck::DecodeEvery);
+    const OpenExr exr = open_exr(path, operation, limits, detail::ChunkCheck::Skip);
     Imf::InputFile* file = exr.reader.get();
     require_channels_present(file->header(), channels, path, operation);
     const Imath::Box2i window = file->header().dataWindow();
@@ -320,6 +318,10 @@ Image read_exr(const std::string& path, const std::vector<std::string>& channels
                                 std::string(kReadAdvice));
 
     Image image(extent.width, extent.height, int(channels.size()));
+    // One pass decodes and checks every chunk; for DWA, which the core library
+    // cannot decode, check the chunks' table entries, then read with Imf.
+    if (detail::decode_exr(exr.file, channels, image, operation)) return image;
+    detail::validate_exr(exr.file, limits, operation, detail::ChunkCheck::DecodeEvery);
     translating_exr_exceptions(operation, path, kReadAdvice, [&] {
         file->setFrameBuffer(frame_buffer_over(image, channels, window));
         file->readPixels(window.min.y, window.max.y);

@@ -9,6 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <mutex>
 #include <string>
@@ -94,42 +95,30 @@ std::uint64_t bytes_per_pixel(const CoreContext& core)
     return bytes;
 }
 
-// Decompresses one chunk and discards the result: the core library fails when
-// the chunk's table entry is missing or points outside the file, or when the
-// data decompresses to a size other than the chunk's pixels need.
-void check_chunk(const CoreContext& core, const exr_chunk_info_t& chunk, const std::string& where)
+// Runs `body(chunk, x0, y0, where)` for every chunk (scanline block, or tile of
+// level 0, the level read_exr reads), in parallel, after reading its table
+// entry; (x0, y0) is the chunk's first pixel relative to the data window. (In
+// OpenEXR 3.1's core, a tile's start_x/start_y are tile indices, a scanline
+// block's are pixel coordinates.)
+template <class Body>
+void for_each_chunk(const CoreContext& core, exr_storage_t storage, const exr_attr_box2i_t& window, Body&& body)
 {
-    exr_decode_pipeline_t decode = EXR_DECODE_PIPELINE_INITIALIZER;
-    exr_result_t result = exr_decoding_initialize(core.get(), 0, &chunk, &decode);
-    // No channel has a destination, so the default routines read and decompress only.
-    if (result == EXR_ERR_SUCCESS) result = exr_decoding_choose_default_routines(core.get(), 0, &decode);
-    if (result == EXR_ERR_SUCCESS) result = exr_decoding_run(core.get(), 0, &decode);
-    exr_decoding_destroy(core.get(), &decode);
-    // OpenEXR 3.1's core has no DWA decoder: the chunk's table entry and header were read, which is what it can check.
-    if (result == EXR_ERR_FEATURE_NOT_IMPLEMENTED) return;
-    core.check(result, where + " cannot be decoded");
-}
-
-void check_scanline_chunks(const CoreContext& core, const exr_attr_box2i_t& window)
-{
-    int32_t lines = 0;
-    core.check(exr_get_scanlines_per_chunk(core.get(), 0, &lines), "its chunk layout cannot be read");
-    const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
-    const std::int64_t chunks = (height + lines - 1) / lines;
-    tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, chunks), [&](const tbb::blocked_range<std::int64_t>& r) {
-        for (std::int64_t i = r.begin(); i < r.end(); ++i) {
-            const int y = int(window.min.y + i * lines);
-            exr_chunk_info_t chunk{};
-            const std::string where = "the scanlines from y = " + std::to_string(y);
-            core.check(exr_read_scanline_chunk_info(core.get(), 0, y, &chunk), where + " are missing");
-            check_chunk(core, chunk, where);
-        }
-    });
-}
-
-// Level 0 only: that is the level read_exr reads.
-void check_tile_chunks(const CoreContext& core)
-{
+    if (storage == EXR_STORAGE_SCANLINE) {
+        int32_t lines = 0;
+        core.check(exr_get_scanlines_per_chunk(core.get(), 0, &lines), "its chunk layout cannot be read");
+        const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+        const std::int64_t chunks = (height + lines - 1) / lines;
+        tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, chunks), [&](const tbb::blocked_range<std::int64_t>& r) {
+            for (std::int64_t i = r.begin(); i < r.end(); ++i) {
+                const int y = int(window.min.y + i * lines);
+                exr_chunk_info_t chunk{};
+                const std::string where = "the scanlines from y = " + std::to_string(y);
+                core.check(exr_read_scanline_chunk_info(core.get(), 0, y, &chunk), where + " are missing");
+                body(chunk, 0, int(i * lines), where);
+            }
+        });
+        return;
+    }
     int32_t tile_w = 0, tile_h = 0, level_w = 0, level_h = 0;
     core.check(exr_get_tile_sizes(core.get(), 0, 0, 0, &tile_w, &tile_h), "its tile size cannot be read");
     core.check(exr_get_level_sizes(core.get(), 0, 0, 0, &level_w, &level_h), "its level size cannot be read");
@@ -140,9 +129,50 @@ void check_tile_chunks(const CoreContext& core)
                 exr_chunk_info_t chunk{};
                 const std::string where = "tile (" + std::to_string(tx) + ", " + std::to_string(ty) + ")";
                 core.check(exr_read_tile_chunk_info(core.get(), 0, tx, ty, 0, 0, &chunk), where + " is missing");
-                check_chunk(core, chunk, where);
+                body(chunk, tx * tile_w, ty * tile_h, where);
             }
     });
+}
+
+// Reads and decompresses one chunk, unpacking the channels `destination` gives
+// a pointer for; the core library fails when the data decompresses to any size
+// but the one the chunk's pixels need.
+template <class Destination>
+exr_result_t decode_chunk(const CoreContext& core, const exr_chunk_info_t& chunk, Destination&& destination)
+{
+    exr_decode_pipeline_t decode{};  // all zero, as EXR_DECODE_PIPELINE_INITIALIZER
+    exr_result_t result = exr_decoding_initialize(core.get(), 0, &chunk, &decode);
+    if (result == EXR_ERR_SUCCESS) {
+        for (int c = 0; c < decode.channel_count; ++c) destination(decode.channels[c]);
+        result = exr_decoding_choose_default_routines(core.get(), 0, &decode);
+    }
+    if (result == EXR_ERR_SUCCESS) result = exr_decoding_run(core.get(), 0, &decode);
+    exr_decoding_destroy(core.get(), &decode);
+    return result;
+}
+
+struct Layout {
+    exr_storage_t storage{};
+    exr_attr_box2i_t window{};
+    exr_compression_t compression{};
+};
+
+Layout layout_of(const CoreContext& core, const InputFile& file, std::string_view operation)
+{
+    Layout l;
+    core.check(exr_get_storage(core.get(), 0, &l.storage), "its storage type cannot be read");
+    core.check(exr_get_data_window(core.get(), 0, &l.window), "its data window cannot be read");
+    core.check(exr_get_compression(core.get(), 0, &l.compression), "its compression cannot be read");
+    if (l.storage != EXR_STORAGE_SCANLINE && l.storage != EXR_STORAGE_TILED)
+        throw Error(ErrorCategory::Io, operation,
+                    in_quotes(file.path()) + " holds deep data; only flat scanline or tiled images can be read");
+    return l;
+}
+
+// OpenEXR 3.1's core library has no DWA decoder.
+bool core_decodes(exr_compression_t compression)
+{
+    return compression != EXR_COMPRESSION_DWAA && compression != EXR_COMPRESSION_DWAB;
 }
 
 }  // namespace
@@ -171,15 +201,8 @@ void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::strin
 {
     Reading reading{&file, {}, {}};
     const CoreContext core(reading, operation);
-    exr_storage_t storage{};
-    exr_attr_box2i_t window{};
-    exr_compression_t compression{};
-    core.check(exr_get_storage(core.get(), 0, &storage), "its storage type cannot be read");
-    core.check(exr_get_data_window(core.get(), 0, &window), "its data window cannot be read");
-    core.check(exr_get_compression(core.get(), 0, &compression), "its compression cannot be read");
-    if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED)
-        throw Error(ErrorCategory::Io, operation,
-                    in_quotes(file.path()) + " holds deep data; only flat scanline or tiled images can be read");
+    const Layout l = layout_of(core, file, operation);
+    const exr_attr_box2i_t& window = l.window;
 
     const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
     const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
@@ -192,7 +215,7 @@ void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::strin
                         " pixels, more than the limit of " + std::to_string(limits.max_pixels) +
                         " (raise it with --max-pixels N / ExrReadLimits::max_pixels if the file is genuine)");
     const double decoded = double(pixels) * double(bytes_per_pixel(core));
-    const double bound = double(file.size()) * exr_max_expansion(compression);
+    const double bound = double(file.size()) * exr_max_expansion(l.compression);
     if (bound > 0.0 && decoded > bound)
         throw Error(ErrorCategory::Io, operation,
                     in_quotes(file.path()) + " declares a " + size_text + " data window (" +
@@ -200,8 +223,39 @@ void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::strin
                         std::to_string(file.size()) + " bytes cannot hold in this compression; "
                         "the header is corrupt or the file truncated");
     if (chunks == ChunkCheck::Skip) return;
-    if (storage == EXR_STORAGE_SCANLINE) check_scanline_chunks(core, window);
-    else check_tile_chunks(core);
+    // Decompress and discard; without a decoder (DWA), the table entries are what can be checked.
+    for_each_chunk(core, l.storage, window, [&](const exr_chunk_info_t& chunk, int, int, const std::string& where) {
+        if (core_decodes(l.compression))
+            core.check(decode_chunk(core, chunk, [](exr_coding_channel_info_t&) {}), where + " cannot be decoded");
+    });
+}
+
+bool decode_exr(const InputFile& file, const std::vector<std::string>& channels, Image& image,
+                std::string_view operation)
+{
+    Reading reading{&file, {}, {}};
+    const CoreContext core(reading, operation);
+    const Layout l = layout_of(core, file, operation);
+    if (!core_decodes(l.compression)) return false;
+    const std::size_t row_bytes = std::size_t(image.pitch()) * sizeof(float);
+    for_each_chunk(core, l.storage, l.window, [&](const exr_chunk_info_t& chunk, int x0, int y0,
+                                                  const std::string& where) {
+        // The chunk's pixels land at their place in the data window, as floats.
+        if (x0 + chunk.width > image.width() || y0 + chunk.height > image.height())
+            core.check(EXR_ERR_CORRUPT_CHUNK, where + " lies outside the data window");
+        const std::size_t offset = std::size_t(y0) * std::size_t(image.pitch()) + std::size_t(x0);
+        const exr_result_t result = decode_chunk(core, chunk, [&](exr_coding_channel_info_t& channel) {
+            const auto it = std::find(channels.begin(), channels.end(), channel.channel_name);
+            if (it == channels.end()) return;
+            channel.decode_to_ptr = reinterpret_cast<uint8_t*>(image.plane(int(it - channels.begin())) + offset);
+            channel.user_pixel_stride = sizeof(float);
+            channel.user_line_stride = int32_t(row_bytes);
+            channel.user_bytes_per_element = sizeof(float);
+            channel.user_data_type = EXR_PIXEL_FLOAT;
+        });
+        core.check(result, where + " cannot be decoded");
+    });
+    return true;
 }
 
 }  // namespace penumbra::detail

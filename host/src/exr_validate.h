@@ -1,11 +1,14 @@
-// Checks an EXR file before OpenEXR's C++ reader allocates or decodes anything
+// Checks an EXR file before OpenEXR's C++ reader allocates or decodes anything,
+// and decodes its pixels with the core API, checking every chunk on the way
 // (docs/robustness.md, "EXR inputs"); used by read_exr (exr_io.cpp).
 #pragma once
 
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 #include "penumbra/exr_io.h"
+#include "penumbra/image.h"
 #include "penumbra/input_file.h"
 
 namespace penumbra::detail {
@@ -25,6 +28,16 @@ namespace penumbra::detail {
 enum class ChunkCheck { DecodeEvery, Skip };
 void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::string_view operation,
                   ChunkCheck chunks);
+
+// Decodes `channels` of every chunk of `file` into `image` (already sized to the
+// data window; plane i receives channels[i], converted to float), each chunk
+// decompressed once, chunks in parallel: the read and the completeness check of
+// validate_exr in one pass. A missing chunk or one that decodes short is
+// Error(Io). Returns false, having written nothing, when the core library
+// cannot decode the file's compression (DWAA, DWAB): the caller then reads
+// with OpenEXR's C++ library after validate_exr.
+bool decode_exr(const InputFile& file, const std::vector<std::string>& channels, Image& image,
+                std::string_view operation);
 
 // Decoded bytes per stored byte, at most, for an OpenEXR compression code
 // (exr_compression_t), or 0 where the format sets no useful bound; the

@@ -8,7 +8,9 @@
 #include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
+#include <string_view>
 #include <filesystem>
 #include <mutex>
 #include <set>
@@ -112,9 +114,13 @@ std::string hidden_name_beside(const fs::path& target)
 {
     static std::atomic<unsigned> counter{0};
     // Hidden, and named after the target, so a stray one says what it was.
-    return (directory_of(target) / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                                    std::to_string(counter++)))
-        .string();
+    std::string name = ".";
+    name += target.filename().string();
+    name += ".tmp-";
+    name += std::to_string(::getpid());
+    name += '-';
+    name += std::to_string(counter++);
+    return (directory_of(target) / name).string();
 }
 
 [[noreturn]] void cannot_create_in(std::string_view operation, const fs::path& target, int error)
@@ -157,6 +163,12 @@ namespace {
 int open_unnamed_beside(const fs::path& target)
 {
 #ifdef O_TMPFILE
+    // For file systems that accept O_TMPFILE but fail linkat() on it (some FUSE
+    // mounts), and for the tests of the fallback.
+    if (const char* off = std::getenv("PENUMBRA_NO_O_TMPFILE"); off && *off && std::string_view(off) != "0") {
+        errno = EOPNOTSUPP;
+        return -1;
+    }
     const int fd = ::open(directory_of(target).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
     if (fd < 0) return -1;
     if (::access(("/proc/self/fd/" + std::to_string(fd)).c_str(), F_OK) != 0) {
@@ -272,7 +284,10 @@ void OutputFiles::publish_all()
             if (done.empty()) message += "; no output was replaced";
             else {
                 message += "; already replaced:";
-                for (const std::string& d : done) message += " " + in_quotes(d);
+                for (const std::string& d : done) {
+                    message += ' ';
+                    message += in_quotes(d);
+                }
                 message += "; not replaced: every other output";
             }
             throw_io(operation_, message + "; if a directory of that name is in the way, move it or choose another path");

@@ -26,15 +26,16 @@
 
 namespace penumbra {
 
-// Names of the channels of an EXR file, in the file's (alphabetical) order.
-std::vector<std::string> exr_channel_names(const std::string& path);
-
 // Limits read_exr applies before it allocates anything (docs/robustness.md).
 // The default admits a 16384^2 plane, the largest map penumbra itself writes
 // (1 GiB per float channel); larger files need a larger limit, on purpose.
 struct ExrReadLimits {
     std::uint64_t max_pixels = std::uint64_t(1) << 28;  // width x height of the data window
 };
+
+// Names of the channels of an EXR file, in the file's (alphabetical) order.
+// The header's claims are checked against `limits` as for read_exr.
+std::vector<std::string> exr_channel_names(const std::string& path, const ExrReadLimits& limits = {});
 
 // Reads `channels`, in that order, into the planes of a new Image (plane i holds
 // channels[i]). The file may store a channel as FLOAT, HALF or UINT: OpenEXR

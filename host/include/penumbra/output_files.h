@@ -7,7 +7,8 @@
 // target; a failure before the first rename leaves every target as it was. Where
 // the file system lacks O_TMPFILE (or /proc is not mounted), named temporaries
 // ".NAME.tmp-PID-N" are used instead and removed on failure and on SIGINT,
-// SIGTERM and SIGHUP. docs/robustness.md describes the whole scheme.
+// SIGTERM and SIGHUP (not SIGKILL); PENUMBRA_NO_O_TMPFILE=1 forces them.
+// docs/robustness.md describes the whole scheme.
 #pragma once
 
 #include <functional>
