@@ -26,5 +26,5 @@ for target in "${targets[@]}"; do
     >"$out/$target.log" 2>&1 || rc=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$out/$target.log")
   coverage=$(grep -oE 'cov: [0-9]+ ft: [0-9]+' "$out/$target.log" | tail -n 1)
-  echo "$target: exit $rc, ${runs:-?} executions in $seconds s, $coverage"
+  echo "$target: exit $rc, ${runs:-?} executions (at most $seconds s), $coverage"
 done
