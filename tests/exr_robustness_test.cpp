@@ -122,6 +122,43 @@ TEST_F(ExrRobustness, HugeClaimsAreRefusedBeforeAllocating)
     }
 }
 
+// Found by tests/fuzz/exr_reader_fuzz: OpenEXR 3.1's C++ reader allocates an
+// attribute's value at the size the header claims (1.6 GB from 469 bytes).
+TEST_F(ExrRobustness, AttributeSizeBeyondTheFileIsRefused)
+{
+    const std::string file = valid_file("attribute.exr");
+    std::string bytes = bytes_of(file);
+    const std::string key("lineOrder\0lineOrder\0", 20);
+    const std::size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    const std::int32_t claim = 1851877475;
+    std::memcpy(bytes.data() + at + key.size(), &claim, sizeof claim);
+    put_bytes(file, bytes);
+    expect_refused(file, "claims 1851877475 bytes");
+}
+
+// Found by exr_reader_fuzz: a scanline file whose header also carries a
+// `tiles` attribute has 0 scanlines per chunk for the core library (a division
+// by zero in the chunk walk).
+TEST_F(ExrRobustness, ScanlineFileWithATileDescriptionIsRefused)
+{
+    const std::string file = valid_file("tiles.exr");
+    std::string bytes = bytes_of(file);
+    std::size_t end = 8;  // walk the attributes to the header's closing null byte
+    while (bytes.at(end) != '\0') {
+        const std::size_t type = bytes.find('\0', end) + 1, size_at = bytes.find('\0', type) + 1;
+        std::int32_t size = 0;
+        std::memcpy(&size, bytes.data() + size_at, sizeof size);
+        end = size_at + 4 + std::size_t(size);
+    }
+    const std::uint32_t tiles[2] = {8, 4};
+    std::string attribute("tiles\0tiledesc\0\x09\0\0\0", 19);
+    attribute.append(reinterpret_cast<const char*>(tiles), sizeof tiles).push_back('\0');
+    bytes.insert(end, attribute);
+    put_bytes(file, bytes);
+    expect_refused(file, "0 scanlines per chunk");
+}
+
 TEST_F(ExrRobustness, PixelLimitIsAParameter)
 {
     const std::string file = valid_file("small.exr");

@@ -21,6 +21,14 @@ namespace {
 
 std::string in_quotes(const std::string& text) { return "'" + text + "'"; }
 
+// A name read from a damaged header, fit for a one-line message.
+std::string printable(std::string text)
+{
+    for (char& c : text)
+        if (c < 0x20 || c > 0x7e) c = '?';
+    return text;
+}
+
 // The core library reports through a callback; keep the first message.
 struct Reading {
     const InputFile* file;
@@ -65,6 +73,13 @@ public:
 
     exr_const_context_t get() const { return ctxt_; }
 
+    // A layout the core library accepted but that no reader can walk.
+    [[noreturn]] void refuse(const std::string& what) const
+    {
+        throw Error(ErrorCategory::Io, operation_,
+                    in_quotes(reading_.file->path()) + " is corrupt: " + what + "; re-create the file");
+    }
+
     void check(exr_result_t result, const std::string& what) const
     {
         if (result == EXR_ERR_SUCCESS) return;
@@ -106,6 +121,8 @@ void for_each_chunk(const CoreContext& core, exr_storage_t storage, const exr_at
     if (storage == EXR_STORAGE_SCANLINE) {
         int32_t lines = 0;
         core.check(exr_get_scanlines_per_chunk(core.get(), 0, &lines), "its chunk layout cannot be read");
+        // 0 for a scanline file whose header also holds a `tiles` attribute (found by exr_reader_fuzz).
+        if (lines <= 0) core.refuse("it claims " + std::to_string(lines) + " scanlines per chunk");
         const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
         const std::int64_t chunks = (height + lines - 1) / lines;
         tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, chunks), [&](const tbb::blocked_range<std::int64_t>& r) {
@@ -122,6 +139,8 @@ void for_each_chunk(const CoreContext& core, exr_storage_t storage, const exr_at
     int32_t tile_w = 0, tile_h = 0, level_w = 0, level_h = 0;
     core.check(exr_get_tile_sizes(core.get(), 0, 0, 0, &tile_w, &tile_h), "its tile size cannot be read");
     core.check(exr_get_level_sizes(core.get(), 0, 0, 0, &level_w, &level_h), "its level size cannot be read");
+    if (tile_w <= 0 || tile_h <= 0 || level_w < 0 || level_h < 0)
+        core.refuse("it claims tiles of " + std::to_string(tile_w) + "x" + std::to_string(tile_h));
     const int across = (level_w + tile_w - 1) / tile_w, down = (level_h + tile_h - 1) / tile_h;
     tbb::parallel_for(tbb::blocked_range<int>(0, down), [&](const tbb::blocked_range<int>& rows) {
         for (int ty = rows.begin(); ty < rows.end(); ++ty)
@@ -197,8 +216,59 @@ double exr_max_expansion(int compression)
     }
 }
 
+// The header is a list of attributes (name, type name, a little-endian int32
+// size, then that many bytes), closed by an empty name; a multi-part file has
+// one such list per part and an empty list after the last (the OpenEXR file
+// layout, "Header"). OpenEXR 3.1's C++ reader allocates an attribute's value
+// at the size the file claims before reading it (1.6 GB from a 469-byte file,
+// found by tests/fuzz/exr_reader_fuzz), so every claimed size is checked
+// against the bytes that follow it first.
+void check_attribute_sizes(const InputFile& file, std::string_view operation)
+{
+    std::uint8_t version[4] = {};
+    if (!file.read_at(4, version, sizeof version))
+        throw Error(ErrorCategory::Io, operation, in_quotes(file.path()) + " is truncated inside its header");
+    const bool multipart = (version[1] & 0x10) != 0;  // bit 12 of the version field
+    const auto corrupt = [&](const std::string& what) {
+        throw Error(ErrorCategory::Io, operation,
+                    in_quotes(file.path()) + " is corrupt or truncated: " + what + "; re-create the file");
+    };
+    // A null-terminated string of at most 255 characters at `at`; advances `at` past it.
+    const auto read_name = [&](std::uint64_t& at) {
+        char buffer[256] = {};
+        const std::size_t count = std::size_t(std::min<std::uint64_t>(sizeof buffer, file.size() - std::min(at, file.size())));
+        if (count == 0 || !file.read_at(at, buffer, count)) corrupt("its header ends early");
+        const std::size_t length = std::string_view(buffer, count).find('\0');
+        if (length == std::string_view::npos) corrupt("a header name is longer than 255 characters");
+        at += length + 1;
+        return std::string(buffer, length);
+    };
+    constexpr int kMaxParts = 1 << 16, kMaxAttributes = 1 << 16;
+    std::uint64_t at = 8;
+    for (int part = 0; part < kMaxParts; ++part) {
+        int attributes = 0;
+        for (std::string name = read_name(at); !name.empty(); name = read_name(at)) {
+            if (++attributes > kMaxAttributes) corrupt("its header has more than 65536 attributes");
+            read_name(at);  // the type name
+            std::uint8_t size_bytes[4] = {};
+            if (!file.read_at(at, size_bytes, sizeof size_bytes)) corrupt("its header ends early");
+            at += sizeof size_bytes;
+            const std::int64_t size = std::int32_t(std::uint32_t(size_bytes[0]) | std::uint32_t(size_bytes[1]) << 8 |
+                                                   std::uint32_t(size_bytes[2]) << 16 |
+                                                   std::uint32_t(size_bytes[3]) << 24);
+            if (size < 0 || std::uint64_t(size) > file.size() - std::min(at, file.size()))
+                corrupt("its header attribute '" + printable(name) + "' claims " + std::to_string(size) + " bytes, more than the " +
+                        std::to_string(file.size() - std::min(at, file.size())) + " that follow it");
+            at += std::uint64_t(size);
+        }
+        if (!multipart || attributes == 0) return;  // a single part, or the empty list after the last part
+    }
+    corrupt("it claims more than 65536 parts");
+}
+
 void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::string_view operation, ChunkCheck chunks)
 {
+    check_attribute_sizes(file, operation);
     Reading reading{&file, {}, {}};
     const CoreContext core(reading, operation);
     const Layout l = layout_of(core, file, operation);
