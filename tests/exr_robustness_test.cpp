@@ -137,6 +137,22 @@ TEST_F(ExrRobustness, AttributeSizeBeyondTheFileIsRefused)
     expect_refused(file, "claims 1851877475 bytes");
 }
 
+// Found by exr_reader_fuzz: OpenEXR's C++ reader reads a fixed-size value by
+// its type, not by the size declared, so a box2i declared as 0 bytes shifts
+// every later attribute (and then a garbage size is allocated).
+TEST_F(ExrRobustness, FixedSizeAttributeWithAnotherDeclaredSizeIsRefused)
+{
+    const std::string file = valid_file("declared.exr");
+    std::string bytes = bytes_of(file);
+    const std::string key("displayWindow\0box2i\0", 20);
+    const std::size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    const std::int32_t declared = 0;
+    std::memcpy(bytes.data() + at + key.size(), &declared, sizeof declared);
+    put_bytes(file, bytes);
+    expect_refused(file, "declares 0 bytes but its value takes 16");
+}
+
 // Found by exr_reader_fuzz: a scanline file whose header also carries a
 // `tiles` attribute has 0 scanlines per chunk for the core library (a division
 // by zero in the chunk walk).

@@ -196,14 +196,19 @@ bool core_decodes(exr_compression_t compression)
 
 }  // namespace
 
-// Decoded bytes per stored byte, at most, where the format bounds it. NONE
-// stores pixels as they are. RLE (OpenEXR's ImfRle: a signed count byte and a
-// value byte for a run of at most 127 bytes) reaches 63.5. ZIP and ZIPS are
-// zlib's deflate, whose maximum is 1032 (zlib's "technical details": 258-byte
-// matches coded in 2 bits, plus framing). PXR24 stores 32-bit floats as 24
-// bits before deflate: 1032 * 4 / 3 = 1376. PIZ, B44/B44A and DWAA/DWAB
-// (run lengths inside Huffman or DCT coding) have no small bound; for them,
-// 0 means "no bound": every chunk is still decoded and checked in full.
+// Decoded bytes per stored byte, at most. NONE stores pixels as they are. RLE
+// (OpenEXR's ImfRle: a signed count byte and a value byte for a run of at most
+// 127 bytes) reaches 63.5. ZIP and ZIPS are zlib's deflate, whose maximum is
+// 1032 (zlib's "technical details": 258-byte matches coded in 2 bits, plus
+// framing). PXR24 stores 32-bit floats as 24 bits before deflate: 1032 * 4 / 3
+// = 1376. B44/B44A code a 4x4 block of halves (32 bytes) in 14 bytes, or 3
+// when flat, and store other channels as they are: 32 / 3 < 11, so 64. PIZ
+// (wavelet, then Huffman with run codes of at most 255 values in a code of at
+// least 9 bits) stays below 16 * 255 / 9 < 512: 4096. DWAA/DWAB nest RLE,
+// Huffman and deflate and have no small bound; 65536 is a stated policy, far
+// above what real content reaches (a constant 8192^2 float image: about 5000),
+// so that a small file cannot make OpenEXR's decoders size gigabytes. Every
+// chunk is still decoded and checked in full.
 double exr_max_expansion(int compression)
 {
     switch (compression) {
@@ -212,36 +217,72 @@ double exr_max_expansion(int compression)
     case EXR_COMPRESSION_ZIPS:
     case EXR_COMPRESSION_ZIP: return 1032.0;
     case EXR_COMPRESSION_PXR24: return 1376.0;
-    default: return 0.0;
+    case EXR_COMPRESSION_B44:
+    case EXR_COMPRESSION_B44A: return 64.0;
+    case EXR_COMPRESSION_PIZ: return 4096.0;
+    default: return 65536.0;  // DWAA, DWAB, and codes OpenEXR 3.1 does not know
     }
 }
 
+// The value size OpenEXR 3.1's C++ reader consumes for an attribute of a fixed-
+// size type whatever size the file declares (Imf*Attribute::readValueFrom), or
+// 0 for types whose reader honours the declared size (string, stringvector,
+// floatvector, unknown types) or walks the content (chlist, preview).
+std::int64_t fixed_value_size(const std::string& type)
+{
+    static const std::pair<const char*, std::int64_t> sizes[] = {
+        {"box2i", 16}, {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"double", 8},
+        {"envmap", 1}, {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1}, {"m33f", 36},
+        {"m33d", 72}, {"m44f", 64}, {"m44d", 128}, {"rational", 8}, {"tiledesc", 9}, {"timecode", 8},
+        {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24}, {"deepImageState", 1}};
+    for (const auto& [name, size] : sizes)
+        if (type == name) return size;
+    return 0;
+}
+
 // The header is a list of attributes (name, type name, a little-endian int32
-// size, then that many bytes), closed by an empty name; a multi-part file has
-// one such list per part and an empty list after the last (the OpenEXR file
-// layout, "Header"). OpenEXR 3.1's C++ reader allocates an attribute's value
-// at the size the file claims before reading it (1.6 GB from a 469-byte file,
-// found by tests/fuzz/exr_reader_fuzz), so every claimed size is checked
-// against the bytes that follow it first.
+// size, then the value), closed by an empty name; a multi-part file has one such
+// list per part and an empty list after the last (the OpenEXR file layout,
+// "Header"). OpenEXR 3.1's C++ reader allocates a value at the size the file
+// claims before reading it (1.6 GB from a 469-byte file, found by
+// tests/fuzz/exr_reader_fuzz), sizes a preview image by its own width and
+// height, and reads fixed-size types and channel lists by their content, not by
+// the declared size. So the walk below reads the header as that reader does and
+// refuses any value that claims more bytes than follow it, or whose declared
+// size is not what the reader will consume (no genuine file has either).
 void check_attribute_sizes(const InputFile& file, std::string_view operation)
 {
     std::uint8_t version[4] = {};
     if (!file.read_at(4, version, sizeof version))
         throw Error(ErrorCategory::Io, operation, in_quotes(file.path()) + " is truncated inside its header");
     const bool multipart = (version[1] & 0x10) != 0;  // bit 12 of the version field
+    const std::size_t max_name = (version[1] & 0x04) ? 255 : 31;  // bit 10: long names
     const auto corrupt = [&](const std::string& what) {
         throw Error(ErrorCategory::Io, operation,
                     in_quotes(file.path()) + " is corrupt or truncated: " + what + "; re-create the file");
     };
-    // A null-terminated string of at most 255 characters at `at`; advances `at` past it.
+    const auto left = [&](std::uint64_t at) { return file.size() - std::min(at, file.size()); };
+    // A name as Imf's Xdr::read reads it: up to max_name + 1 bytes, stopping after a null.
     const auto read_name = [&](std::uint64_t& at) {
         char buffer[256] = {};
-        const std::size_t count = std::size_t(std::min<std::uint64_t>(sizeof buffer, file.size() - std::min(at, file.size())));
+        const std::size_t count = std::size_t(std::min<std::uint64_t>(max_name + 1, left(at)));
         if (count == 0 || !file.read_at(at, buffer, count)) corrupt("its header ends early");
         const std::size_t length = std::string_view(buffer, count).find('\0');
-        if (length == std::string_view::npos) corrupt("a header name is longer than 255 characters");
+        if (length == std::string_view::npos) corrupt("a header name is longer than " + std::to_string(max_name) + " characters");
         at += length + 1;
         return std::string(buffer, length);
+    };
+    const auto read_int = [&](std::uint64_t at) {
+        std::uint8_t b[4] = {};
+        if (!file.read_at(at, b, sizeof b)) corrupt("its header ends early");
+        return std::int64_t(std::int32_t(std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 |
+                                         std::uint32_t(b[3]) << 24));
+    };
+    // The bytes a channel list's reader consumes: names with 16 bytes each, then an empty name.
+    const auto chlist_bytes = [&](std::uint64_t at) {
+        const std::uint64_t start = at;
+        for (int c = 0; c <= (1 << 16) && !read_name(at).empty(); ++c) at += 16;
+        return std::int64_t(at - start);
     };
     constexpr int kMaxParts = 1 << 16, kMaxAttributes = 1 << 16;
     std::uint64_t at = 8;
@@ -249,16 +290,21 @@ void check_attribute_sizes(const InputFile& file, std::string_view operation)
         int attributes = 0;
         for (std::string name = read_name(at); !name.empty(); name = read_name(at)) {
             if (++attributes > kMaxAttributes) corrupt("its header has more than 65536 attributes");
-            read_name(at);  // the type name
-            std::uint8_t size_bytes[4] = {};
-            if (!file.read_at(at, size_bytes, sizeof size_bytes)) corrupt("its header ends early");
-            at += sizeof size_bytes;
-            const std::int64_t size = std::int32_t(std::uint32_t(size_bytes[0]) | std::uint32_t(size_bytes[1]) << 8 |
-                                                   std::uint32_t(size_bytes[2]) << 16 |
-                                                   std::uint32_t(size_bytes[3]) << 24);
-            if (size < 0 || std::uint64_t(size) > file.size() - std::min(at, file.size()))
-                corrupt("its header attribute '" + printable(name) + "' claims " + std::to_string(size) + " bytes, more than the " +
-                        std::to_string(file.size() - std::min(at, file.size())) + " that follow it");
+            const std::string type = read_name(at);
+            const std::int64_t size = read_int(at);
+            at += 4;
+            const std::string what = "its header attribute '" + printable(name) + "' (" + printable(type) + ")";
+            if (size < 0 || std::uint64_t(size) > left(at))
+                corrupt(what + " claims " + std::to_string(size) + " bytes, more than the " + std::to_string(left(at)) +
+                        " that follow it");
+            std::int64_t consumed = fixed_value_size(type);
+            if (type == "chlist") consumed = chlist_bytes(at);
+            if (type == "preview") {  // unsigned width and height, then 4 bytes per pixel
+                const auto w = std::uint64_t(std::uint32_t(read_int(at))), h = std::uint64_t(std::uint32_t(read_int(at + 4)));
+                consumed = (w >> 20 || h >> 20) ? -1 : std::int64_t(8 + 4 * w * h);
+            }
+            if (consumed != 0 && consumed != size)
+                corrupt(what + " declares " + std::to_string(size) + " bytes but its value takes " + std::to_string(consumed));
             at += std::uint64_t(size);
         }
         if (!multipart || attributes == 0) return;  // a single part, or the empty list after the last part
@@ -284,9 +330,33 @@ void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::strin
                     in_quotes(file.path()) + " declares a " + size_text + " data window, " + std::to_string(pixels) +
                         " pixels, more than the limit of " + std::to_string(limits.max_pixels) +
                         " (raise it with --max-pixels N / ExrReadLimits::max_pixels if the file is genuine)");
+    // OpenEXR's C++ reader allocates the chunk offset table (8 bytes a chunk,
+    // every tile of every level) from the header; a file holds at least that.
+    int32_t chunk_count = 0;
+    core.check(exr_get_chunk_count(core.get(), 0, &chunk_count), "its chunk count cannot be read");
+    if (chunk_count < 0 || std::uint64_t(chunk_count) * 8 > file.size())
+        throw Error(ErrorCategory::Io, operation,
+                    in_quotes(file.path()) + " declares " + std::to_string(chunk_count) + " chunks, whose offset table alone "
+                    "would not fit in its " + std::to_string(file.size()) + " bytes; the header is corrupt or the file truncated");
+    // Its tiled reader also keeps a buffer of a row of tiles (the window's width
+    // times the tile height) and one tile: bound both by the image itself, plus
+    // room for tiles larger than a small image.
+    if (l.storage == EXR_STORAGE_TILED) {
+        uint32_t tile_w = 0, tile_h = 0;
+        exr_tile_level_mode_t levels{};
+        exr_tile_round_mode_t rounding{};
+        core.check(exr_get_tile_descriptor(core.get(), 0, &tile_w, &tile_h, &levels, &rounding),
+                   "its tile description cannot be read");
+        const std::uint64_t room = pixels + (std::uint64_t(1) << 22);
+        if (std::uint64_t(tile_w) * tile_h > room || std::uint64_t(width) * tile_h > room ||
+            std::uint64_t(tile_w) * std::uint64_t(height) > room)
+            throw Error(ErrorCategory::Io, operation,
+                        in_quotes(file.path()) + " declares " + std::to_string(tile_w) + "x" + std::to_string(tile_h) +
+                            " tiles for a " + size_text + " image; the header is corrupt");
+    }
     const double decoded = double(pixels) * double(bytes_per_pixel(core));
     const double bound = double(file.size()) * exr_max_expansion(l.compression);
-    if (bound > 0.0 && decoded > bound)
+    if (decoded > bound)
         throw Error(ErrorCategory::Io, operation,
                     in_quotes(file.path()) + " declares a " + size_text + " data window (" +
                         std::to_string(std::uint64_t(decoded)) + " bytes decoded) that its " +

@@ -17,7 +17,7 @@ namespace penumbra::detail {
 //  - the data window holds at most limits.max_pixels pixels;
 //  - its decoded size (every channel of the file, not only those asked for) is
 //    at most the file's size times the largest expansion its compression can
-//    reach (exr_max_expansion, where the format bounds it), so that a small
+//    reach (exr_max_expansion), so that a small
 //    file cannot claim a huge image;
 //  - every chunk (scanline block, or tile of level 0) is present in the offset
 //    table, and decompresses without error to exactly the size its header
@@ -40,8 +40,8 @@ bool decode_exr(const InputFile& file, const std::vector<std::string>& channels,
                 std::string_view operation);
 
 // Decoded bytes per stored byte, at most, for an OpenEXR compression code
-// (exr_compression_t), or 0 where the format sets no useful bound; the
-// figures and their sources are in exr_validate.cpp.
+// (exr_compression_t); the figures, their sources and the one stated policy
+// (DWA) are in exr_validate.cpp.
 double exr_max_expansion(int compression);
 
 }  // namespace penumbra::detail
