@@ -153,11 +153,11 @@ PN_BACKEND_TEST(MsmTest, WithinTheExactBoundUpToDepthUncertainty)
                         const double e = excess(atoms, alpha, rx.at(2, x, y), 1.0 - out.at(0, x, y), delta);
                         worst = std::max(worst, e);
                         ASSERT_LE(e, 0.01)
-                            << backend << " " << to_string(q) << "-bit alpha " << alpha << " trial " << trial
+                            << backend << " " << to_string(q) << " storage, alpha " << alpha << " trial " << trial
                             << " receiver " << x << "," << y << " z " << rx.at(2, x, y);
                     }
             }
-            std::printf("[ msm ] %s %s-bit alpha %g: worst excess over the exact bound (delta %g) %.4f\n",
+            std::printf("[ msm ] %s %s storage, alpha %g: worst excess over the exact bound (delta %g) %.4f\n",
                         backend.c_str(), to_string(q).c_str(), alpha, delta, worst);
         }
 }
