@@ -1,0 +1,196 @@
+#include "support/fidelity_cases.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "penumbra/chebyshev.h"
+#include "penumbra/moment_table.h"
+#include "penumbra/moments.h"
+
+namespace penumbra::testing::fidelity {
+
+namespace {
+
+template <class F>
+Image map_of(int width, int height, F depth)
+{
+    Image map(width, height, 1);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            map.at(0, x, y) = std::clamp(float(depth((x + 0.5) / width, (y + 0.5) / height, x, y)), 0.0f, 1.0f);
+    return map;
+}
+
+double ground(double s, double t) { return 0.45 + 0.25 * s + 0.1 * t + 0.05 * std::sin(6.0 * s) * std::cos(4.0 * t); }
+
+}  // namespace
+
+Image smooth_map(int width, int height)
+{
+    return map_of(width, height, [](double s, double t, int, int) { return ground(s, t); });
+}
+
+Image two_layer_map(int width, int height)
+{
+    return map_of(width, height, [](double s, double t, int, int) {
+        // Occluder patches: discs and a bar, themselves slightly tilted.
+        const bool disc = std::hypot(s - 0.3, t - 0.4) < 0.18 || std::hypot(s - 0.72, t - 0.7) < 0.12;
+        const bool bar = std::fabs(t - 0.15) < 0.05 && s > 0.5;
+        return disc || bar ? 0.3 + 0.05 * s : 0.8 + 0.1 * (s - t) * 0.5;
+    });
+}
+
+Image constant_map(int width, int height, float z)
+{
+    return map_of(width, height, [z](double, double, int, int) { return z; });
+}
+
+Image checker_map(int width, int height, float a, float b)
+{
+    return map_of(width, height, [a, b](double, double, int x, int y) { return (x + y) % 2 ? b : a; });
+}
+
+Image receivers_for(const Image& map, int count, std::uint32_t seed)
+{
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::uniform_real_distribution<double> log_front(std::log(1e-3), std::log(3e-2));
+    std::uniform_real_distribution<double> log_behind(std::log(1e-4), std::log(5e-2));
+    Image rx(count, 1, 3);
+    for (int i = 0; i < count; ++i) {
+        const float u = unit(rng), v = unit(rng);
+        const Box texel = texel_window(map.width(), map.height(), u, v, 0);
+        const float surface = map.at(0, texel.x0, texel.y0);
+        float z = surface;
+        if (i % 4 == 1) z = surface - float(std::exp(log_front(rng)));
+        if (i % 4 >= 2) z = surface + float(std::exp(log_behind(rng)));
+        rx.at(0, i, 0) = u;
+        rx.at(1, i, 0) = v;
+        rx.at(2, i, 0) = z;
+    }
+    return rx;
+}
+
+Image receivers_at_texels(const Image& map, float dz)
+{
+    Image rx(map.width(), map.height(), 3);
+    for (int y = 0; y < map.height(); ++y)
+        for (int x = 0; x < map.width(); ++x) {
+            rx.at(0, x, y) = (float(x) + 0.5f) / float(map.width());
+            rx.at(1, x, y) = (float(y) + 0.5f) / float(map.height());
+            rx.at(2, x, y) = map.at(0, x, y) + dz;
+        }
+    return rx;
+}
+
+bool is_soft(Method m) { return m == Method::Vssm || m == Method::MsmSoft; }
+
+std::vector<Mode> modes_of(Method) { return {Mode::Default, Mode::Float}; }
+
+std::string mode_name(Method m, Mode mode)
+{
+    const bool msm = m == Method::Msm || m == Method::MsmSoft;
+    if (mode == Mode::Default) return msm ? "default (16-bit exact)" : "default (exact)";
+    return msm ? "--quantize 32 --precision float" : "--precision float";
+}
+
+int max_radius(Method, Mode) { return kExactMaxRadius; }
+
+namespace {
+
+int soft_max_radius(Mode mode, const Image& map)
+{
+    return mode == Mode::Default ? kExactMaxRadius - 1 : std::max(map.width(), map.height());
+}
+
+}  // namespace
+
+Image run_library(Context& ctx, Method m, Mode mode, const Image& map, const Image& rx, Setting s, Params* params)
+{
+    Params p;
+    p.radius = s.radius;
+    p.light_size = s.light_size;
+    p.max_radius = soft_max_radius(mode, map);
+    const Precision precision = mode == Mode::Default ? Precision::Exact : Precision::Float;
+    Image out;
+    if (m == Method::Vsm || m == Method::Vssm) {
+        const MomentTable t = build_moment_table(ctx, map, 2, precision);
+        out = m == Method::Vsm ? vsm(ctx, t, rx, VsmOptions{s.radius, p.min_variance, p.bleed})
+                               : vssm(ctx, t, rx, VssmOptions{s.light_size, p.min_variance, p.bleed});
+    } else if (m == Method::Msm || m == Method::MsmSoft) {
+        const Quantization q = mode == Mode::Default ? Quantization::Bits16 : Quantization::Bits32;
+        const MsmTable t = build_msm_table(ctx, map, q, precision);
+        p.moment_bias = default_moment_bias(q);
+        p.msm_depth_bias = default_depth_bias(q);
+        out = m == Method::Msm ? msm(ctx, t, rx, MsmOptions{s.radius, {}, {}})
+                               : msm_soft(ctx, t, rx, MsmSoftOptions{s.light_size, {}, {}});
+    } else {
+        EvsmWarp warp;
+        warp.channels = m == Method::Evsm2 ? 2 : 4;
+        warp.quantization = mode == Mode::Default ? Quantization::Bits16 : Quantization::Bits32;
+        const EvsmTable t = build_evsm_table(ctx, map, warp, precision);
+        p.positive = t.positive;
+        p.negative = t.negative;
+        EvsmOptions o;
+        o.radius = s.radius;
+        p.min_variance = o.min_variance;
+        p.bleed = o.bleed;
+        p.evsm_depth_bias = o.depth_bias;
+        out = evsm(ctx, t, rx, o);
+    }
+    if (params) *params = p;
+    return out;
+}
+
+std::vector<double> reference_all(Method m, const Image& map, const Image& rx, const Params& p)
+{
+    std::vector<double> refs(std::size_t(rx.width()) * std::size_t(rx.height()));
+    tbb::parallel_for(0, int(refs.size()), [&](int i) {
+        refs[std::size_t(i)] = double(evaluate(m, map, receiver_at(rx, i % rx.width(), i / rx.width()), p, false).visibility);
+    });
+    return refs;
+}
+
+Tally judge_all(Method m, const Image& map, const Image& rx, const Image& library, const Params& p, int max_lines,
+                const std::vector<double>* references)
+{
+    Tally t;
+    const int n = rx.width() * rx.height();
+    t.receivers = n;
+    t.deviations.resize(std::size_t(n));
+    std::vector<Verdict> verdicts(static_cast<std::size_t>(n));
+    tbb::parallel_for(0, n, [&](int i) {
+        const int x = i % rx.width(), y = i / rx.width();
+        verdicts[std::size_t(i)] = judge(m, map, receiver_at(rx, x, y), p, library.at(0, x, y),
+                                          references ? &(*references)[std::size_t(i)] : nullptr);
+    });
+    for (int i = 0; i < n; ++i) {
+        const Verdict& v = verdicts[std::size_t(i)];
+        const double d = std::isfinite(v.deviation) ? v.deviation : 1.0;
+        t.deviations[std::size_t(i)] = d;
+        t.worst = std::max(t.worst, d);
+        t.beyond += d > tolerance(m);
+        t.beyond_1e2 += d > 1e-2;
+        t.ill += v.ill_conditioned;
+        if (!v.pass) {
+            if (t.failed < max_lines) {
+                const int x = i % rx.width(), y = i / rx.width();
+                const Receiver r = receiver_at(rx, x, y);
+                char line[256];
+                std::snprintf(line, sizeof line,
+                              "  receiver %d (u %.9g v %.9g z %.9g): library %.9g reference %.9g |diff| %.3g bound %.3g "
+                              "movement %.3g\n",
+                              i, r.u, r.v, r.z, library.at(0, x, y), v.reference, v.deviation, v.bound, v.movement);
+                t.first_failures += line;
+            }
+            ++t.failed;
+        }
+    }
+    return t;
+}
+
+}  // namespace penumbra::testing::fidelity
