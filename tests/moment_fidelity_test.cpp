@@ -256,5 +256,67 @@ PN_BACKEND_TEST(MomentFidelity, DefaultModeWithinToleranceOfTheFloat64Method)
 
 INSTANTIATE_TEST_SUITE_P(Backends, MomentFidelity, ::testing::ValuesIn(testing::backend_names()), backend_test_name);
 
+// ---- every backend against scalar on the same cases (docs/fidelity.md) ----
+
+// The largest |backend - scalar| docs/fidelity.md states, per method.
+double agreement_limit(Method m)
+{
+    switch (m) {
+    case Method::Vsm:
+    case Method::Vssm:
+    case Method::Evsm2:
+    case Method::Evsm4: return 2e-4;
+    case Method::Msm:
+    case Method::MsmSoft: return 1e-3;
+    }
+    return 0;
+}
+
+class MomentAgreement : public ::testing::TestWithParam<std::string> {};
+
+PN_BACKEND_TEST(MomentAgreement, EveryBackendAgreesWithScalarOnTheFidelityCases)
+{
+    if (backend == "scalar") GTEST_SKIP() << "scalar is the baseline";
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    Context& scalar = PN_CONTEXT_OR_SKIP("scalar");
+    std::map<Method, double> worst;
+    std::map<Method, long> differing, total;
+    for (const Case& c : cases())
+        for_each_run(c, [&](Method m, Setting s) {
+            const Image a = run_library(ctx, m, Mode::Default, c.map, c.receivers, s, nullptr);
+            const Image b = run_library(scalar, m, Mode::Default, c.map, c.receivers, s, nullptr);
+            for (int i = 0; i < a.width(); ++i) {
+                const double d = std::fabs(double(a.at(0, i, 0)) - double(b.at(0, i, 0)));
+                worst[m] = std::max(worst[m], d);
+                differing[m] += d != 0.0;
+                ++total[m];
+            }
+        });
+    for (Method m : kMethods) {
+        std::printf("%s vs scalar, %s: max |diff| %.3g, %ld of %ld receivers differ\n", backend.c_str(),
+                    method_name(m).c_str(), worst[m], differing[m], total[m]);
+        EXPECT_LE(worst[m], agreement_limit(m)) << method_name(m) << " on " << backend;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, MomentAgreement, ::testing::ValuesIn(testing::backend_names()), backend_test_name);
+
+// ---- 16384^2 (slow: a 1 GiB map and its table) ----------------------------
+
+TEST(MomentFidelitySlowTest, VsmAt16384)
+{
+    Context ctx;
+    const Image map = smooth_map(16384, 16384);
+    const Image rx = receivers_for(map, 300, 16384);
+    for (Setting s : radii({0, 2, 8, kExactMaxRadius})) {
+        Params p;
+        const Image out = run_library(ctx, Method::Vsm, Mode::Default, map, rx, s, &p);
+        const Tally t = judge_all(Method::Vsm, map, rx, out, p);
+        std::printf("vsm at 16384^2, radius %d: worst %.3g over %d receivers\n", s.radius, t.worst, t.receivers);
+        EXPECT_EQ(t.failed, 0) << "radius " << s.radius << ": worst " << t.worst << "\n" << t.first_failures;
+    }
+}
+
+
 }  // namespace
 }  // namespace penumbra

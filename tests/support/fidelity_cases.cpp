@@ -98,7 +98,6 @@ std::string mode_name(Method m, Mode mode)
     return msm ? "--quantize 32 --precision float" : "--precision float";
 }
 
-int max_radius(Method, Mode) { return kExactMaxRadius; }
 
 namespace {
 
@@ -115,24 +114,26 @@ Image run_library(Context& ctx, Method m, Mode mode, const Image& map, const Ima
     p.radius = s.radius;
     p.light_size = s.light_size;
     p.max_radius = soft_max_radius(mode, map);
-    const Precision precision = mode == Mode::Default ? Precision::Exact : Precision::Float;
+    // The default mode is whatever the API's default arguments are: what
+    // `penumbra shade` builds with no precision or quantization option.
+    const bool defaults = mode == Mode::Default;
     Image out;
     if (m == Method::Vsm || m == Method::Vssm) {
-        const MomentTable t = build_moment_table(ctx, map, 2, precision);
+        const MomentTable t = defaults ? build_moment_table(ctx, map) : build_moment_table(ctx, map, 2, Precision::Float);
         out = m == Method::Vsm ? vsm(ctx, t, rx, VsmOptions{s.radius, p.min_variance, p.bleed})
                                : vssm(ctx, t, rx, VssmOptions{s.light_size, p.min_variance, p.bleed});
     } else if (m == Method::Msm || m == Method::MsmSoft) {
-        const Quantization q = mode == Mode::Default ? Quantization::Bits16 : Quantization::Bits32;
-        const MsmTable t = build_msm_table(ctx, map, q, precision);
-        p.moment_bias = default_moment_bias(q);
-        p.msm_depth_bias = default_depth_bias(q);
+        const MsmTable t = defaults ? build_msm_table(ctx, map)
+                                    : build_msm_table(ctx, map, Quantization::Bits32, Precision::Float);
+        p.moment_bias = default_moment_bias(t.quantization);
+        p.msm_depth_bias = default_depth_bias(t.quantization);
         out = m == Method::Msm ? msm(ctx, t, rx, MsmOptions{s.radius, {}, {}})
                                : msm_soft(ctx, t, rx, MsmSoftOptions{s.light_size, {}, {}});
     } else {
         EvsmWarp warp;
         warp.channels = m == Method::Evsm2 ? 2 : 4;
-        warp.quantization = mode == Mode::Default ? Quantization::Bits16 : Quantization::Bits32;
-        const EvsmTable t = build_evsm_table(ctx, map, warp, precision);
+        if (!defaults) warp.quantization = Quantization::Bits32;
+        const EvsmTable t = build_evsm_table(ctx, map, warp, defaults ? Precision::Exact : Precision::Float);
         p.positive = t.positive;
         p.negative = t.negative;
         EvsmOptions o;

@@ -44,8 +44,6 @@ struct Setting {
     float light_size = 0.02f;
 };
 bool is_soft(Method m);
-// The largest radius / the light sizes a method accepts in a mode on a map.
-int max_radius(Method m, Mode mode);
 
 // Runs the library; returns its visibility and fills the reference's
 // parameters with those the library used.
