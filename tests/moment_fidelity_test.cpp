@@ -254,6 +254,27 @@ PN_BACKEND_TEST(MomentFidelity, DefaultModeWithinToleranceOfTheFloat64Method)
         });
 }
 
+// The opt-in I3D 2015 16-bit quantization: the arithmetic after it against
+// the float64 method on its dequantized moments (its quantization error
+// against the input depths is measured by bench/moment_fidelity, not held to
+// the tolerance).
+PN_BACKEND_TEST(MomentFidelity, SixteenBitMsmWithinToleranceOfItsDequantizedMoments)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    for (const Case& c : cases())
+        for_each_run(c, [&](Method m, Setting s) {
+            if (m != Method::Msm && m != Method::MsmSoft) return;
+            Params p;
+            StoredMoments stored;
+            const Image out = run_library(ctx, m, Mode::Msm16, c.map, c.receivers, s, &p, &stored);
+            const Tally t = judge_all(m, c.map, c.receivers, out, p, 5);
+            EXPECT_EQ(t.failed, 0) << method_name(m) << " (16-bit) on " << c.name << ", " << setting_name(m, s)
+                                   << ": " << t.failed << " of " << t.receivers << " receivers fail the rule (worst "
+                                   << t.worst << ", " << t.ill << " ill-conditioned)\n"
+                                   << t.first_failures;
+        });
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, MomentFidelity, ::testing::ValuesIn(testing::backend_names()), backend_test_name);
 
 // ---- every backend against scalar on the same cases (docs/fidelity.md) ----

@@ -10,6 +10,7 @@
 #include "penumbra/chebyshev.h"
 #include "penumbra/moment_table.h"
 #include "penumbra/moments.h"
+#include "support/moment_reference.h"
 
 namespace penumbra::testing::fidelity {
 
@@ -94,6 +95,7 @@ std::vector<Mode> modes_of(Method) { return {Mode::Default, Mode::Float}; }
 std::string mode_name(Method m, Mode mode)
 {
     const bool msm = m == Method::Msm || m == Method::MsmSoft;
+    if (mode == Mode::Msm16) return "--quantize 16";
     if (mode == Mode::Default) return msm ? "default (16-bit exact)" : "default (exact)";
     return msm ? "--quantize 32 --precision float" : "--precision float";
 }
@@ -103,12 +105,35 @@ namespace {
 
 int soft_max_radius(Mode mode, const Image& map)
 {
-    return mode == Mode::Default ? kExactMaxRadius - 1 : std::max(map.width(), map.height());
+    return mode == Mode::Float ? std::max(map.width(), map.height()) : kExactMaxRadius - 1;
 }
 
 }  // namespace
 
-Image run_library(Context& ctx, Method m, Mode mode, const Image& map, const Image& rx, Setting s, Params* params)
+namespace {
+
+// The opt-in 16-bit table's texels: n_k steps of o_k = n_k / 65535, decoded
+// with the paper's inverse (tests/support/moment_reference.h, Peters & Klein
+// 2015's printed matrix and offset, as the library's decoding uses them).
+StoredMoments dequantized(const MsmTable& t)
+{
+    StoredMoments d{t.sums.width(), t.sums.height(), {}};
+    d.texel.resize(std::size_t(d.width) * std::size_t(d.height));
+    for (int y = 0; y < d.height; ++y)
+        for (int x = 0; x < d.width; ++x) {
+            std::array<double, 4> o{};
+            for (int k = 0; k < 4; ++k) o[std::size_t(k)] = t.sums.exact_box_sum(k, x, x + 1, y, y + 1) / 65535.0;
+            const Moments4 b = optimized_decode(o);
+            auto& texel = d.texel[std::size_t(y) * std::size_t(d.width) + std::size_t(x)];
+            for (int k = 0; k < 4; ++k) texel[std::size_t(k)] = real(b[std::size_t(k + 1)]);
+        }
+    return d;
+}
+
+}  // namespace
+
+Image run_library(Context& ctx, Method m, Mode mode, const Image& map, const Image& rx, Setting s, Params* params,
+                  StoredMoments* stored)
 {
     Params p;
     p.radius = s.radius;
@@ -123,8 +148,13 @@ Image run_library(Context& ctx, Method m, Mode mode, const Image& map, const Ima
         out = m == Method::Vsm ? vsm(ctx, t, rx, VsmOptions{s.radius, p.min_variance, p.bleed})
                                : vssm(ctx, t, rx, VssmOptions{s.light_size, p.min_variance, p.bleed});
     } else if (m == Method::Msm || m == Method::MsmSoft) {
-        const MsmTable t = defaults ? build_msm_table(ctx, map)
-                                    : build_msm_table(ctx, map, Quantization::Bits32, Precision::Float);
+        const MsmTable t = defaults                ? build_msm_table(ctx, map)
+                           : mode == Mode::Msm16 ? build_msm_table(ctx, map, Quantization::Bits16, Precision::Exact)
+                                                 : build_msm_table(ctx, map, Quantization::Bits32, Precision::Float);
+        if (mode == Mode::Msm16 && stored) {
+            *stored = dequantized(t);
+            p.stored = stored;
+        }
         p.moment_bias = default_moment_bias(t.quantization);
         p.msm_depth_bias = default_depth_bias(t.quantization);
         out = m == Method::Msm ? msm(ctx, t, rx, MsmOptions{s.radius, {}, {}})
@@ -147,8 +177,11 @@ Image run_library(Context& ctx, Method m, Mode mode, const Image& map, const Ima
     return out;
 }
 
-std::vector<double> reference_all(Method m, const Image& map, const Image& rx, const Params& p)
+std::vector<double> reference_all(Method m, const Image& map, const Image& rx, const Params& params)
 {
+    const WarpedMap warped = m == Method::Evsm2 || m == Method::Evsm4 ? warp_map(map, params) : WarpedMap{};
+    Params p = params;
+    if (m == Method::Evsm2 || m == Method::Evsm4) p.warped = &warped;
     std::vector<double> refs(std::size_t(rx.width()) * std::size_t(rx.height()));
     tbb::parallel_for(0, int(refs.size()), [&](int i) {
         refs[std::size_t(i)] = double(evaluate(m, map, receiver_at(rx, i % rx.width(), i / rx.width()), p, false).visibility);
@@ -156,9 +189,12 @@ std::vector<double> reference_all(Method m, const Image& map, const Image& rx, c
     return refs;
 }
 
-Tally judge_all(Method m, const Image& map, const Image& rx, const Image& library, const Params& p, int max_lines,
-                const std::vector<double>* references)
+Tally judge_all(Method m, const Image& map, const Image& rx, const Image& library, const Params& params,
+                int max_lines, const std::vector<double>* references)
 {
+    const WarpedMap warped = m == Method::Evsm2 || m == Method::Evsm4 ? warp_map(map, params) : WarpedMap{};
+    Params p = params;
+    if (m == Method::Evsm2 || m == Method::Evsm4) p.warped = &warped;
     Tally t;
     const int n = rx.width() * rx.height();
     t.receivers = n;

@@ -33,6 +33,7 @@ Image receivers_at_texels(const Image& map, float dz);
 enum class Mode {
     Default,  // what `penumbra shade` uses with no precision or quantization option
     Float,    // --precision float (msm: --quantize 32 --precision float)
+    Msm16,    // msm, msm-soft: the opt-in I3D 2015 16-bit quantization (--quantize 16)
 };
 std::string mode_name(Method m, Mode mode);
 std::vector<Mode> modes_of(Method m);
@@ -46,9 +47,11 @@ struct Setting {
 bool is_soft(Method m);
 
 // Runs the library; returns its visibility and fills the reference's
-// parameters with those the library used.
+// parameters with those the library used. Mode::Msm16 also fills `stored`
+// with the table's dequantized per-texel moments and points the parameters
+// at them (the reference of the arithmetic after the quantization).
 Image run_library(Context& ctx, Method m, Mode mode, const Image& map, const Image& receivers, Setting s,
-                  Params* params);
+                  Params* params, StoredMoments* stored = nullptr);
 
 inline Receiver receiver_at(const Image& rx, int x, int y)
 {

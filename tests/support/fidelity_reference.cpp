@@ -116,30 +116,96 @@ Moments perturbed(const Moments& m, int count, unsigned signs, real eps)
 }
 
 real identity(real z, const Params&) { return z; }
+real positive_warp(real z, const Params& p) { return std::exp(real(p.positive) * (z - 1)); }
+real negative_warp(real z, const Params& p) { return -std::exp(-real(p.negative) * z); }
+
+const std::vector<real>* WarpedMap::of(Transform f) const
+{
+    return f == positive_warp ? &positive : (f == negative_warp ? &negative : nullptr);
+}
+
+WarpedMap warp_map(const Image& depth, const Params& p)
+{
+    WarpedMap w;
+    for (int y = 0; y < depth.height(); ++y)
+        for (int x = 0; x < depth.width(); ++x) {
+            w.positive.push_back(positive_warp(real(depth.at(0, x, y)), p));
+            w.negative.push_back(negative_warp(real(depth.at(0, x, y)), p));
+        }
+    return w;
+}
+
+namespace {
+
+// Calls visit(x, y, weight) for every texel a span covers, weighted by the
+// overlap of [x, x + 1) x [y, y + 1) with it.
+template <class Visit>
+void for_span_texels(int width, int height, Span s, Visit visit)
+{
+    const auto overlap = [](int i, real lo, real hi) {
+        return std::max<real>(0, std::min<real>(i + 1, hi) - std::max<real>(i, lo));
+    };
+    const int x0 = int(std::floor(s.x0)), x1 = std::min(int(std::ceil(s.x1)), width);
+    const int y0 = int(std::floor(s.y0)), y1 = std::min(int(std::ceil(s.y1)), height);
+    for (int y = y0; y < y1; ++y) {
+        const real wy = overlap(y, s.y0, s.y1);
+        if (wy <= 0) continue;
+        for (int x = x0; x < x1; ++x) {
+            const real wx = overlap(x, s.x0, s.x1);
+            if (wx > 0) visit(x, y, wx * wy);
+        }
+    }
+}
+
+// The weighted mean of stored per-texel raw moments.
+template <class Texels>
+Moments stored_moments(const StoredMoments& stored, Texels texels)
+{
+    std::array<real, 5> raw{0, 0, 0, 0, 0};
+    texels([&](int x, int y, real weight) {
+        const auto& t = stored.texel[std::size_t(y) * std::size_t(stored.width) + std::size_t(x)];
+        raw[0] += weight;
+        for (int k = 1; k <= 4; ++k) raw[k] += weight * t[std::size_t(k - 1)];
+    });
+    for (int k = 1; k <= 4; ++k) raw[k] /= raw[0];
+    raw[0] = 1;
+    return from_raw(raw);
+}
+
+}  // namespace
 
 Moments box_moments(const Image& depth, Box b, Transform f, const Params& p)
 {
+    if (p.stored)
+        return stored_moments(*p.stored, [&](auto&& add) {
+            for (int y = b.y0; y < b.y1; ++y)
+                for (int x = b.x0; x < b.x1; ++x) add(x, y, real(1));
+        });
+    if (f == identity)
+        return accumulate([&](auto&& add) {
+            for (int y = b.y0; y < b.y1; ++y)
+                for (int x = b.x0; x < b.x1; ++x) add(real(depth.at(0, x, y)), 1);
+        });
+    const std::vector<real>* warped = p.warped ? p.warped->of(f) : nullptr;
+    if (!warped)
+        return accumulate([&](auto&& add) {
+            for (int y = b.y0; y < b.y1; ++y)
+                for (int x = b.x0; x < b.x1; ++x) add(f(real(depth.at(0, x, y)), p), 1);
+        });
+    const std::vector<real>& values = *warped;
     return accumulate([&](auto&& add) {
         for (int y = b.y0; y < b.y1; ++y)
-            for (int x = b.x0; x < b.x1; ++x) add(f(real(depth.at(0, x, y)), p), 1);
+            for (int x = b.x0; x < b.x1; ++x) add(values[std::size_t(y) * std::size_t(depth.width()) + std::size_t(x)], 1);
     });
 }
 
 Moments span_moments(const Image& depth, Span s, Transform f, const Params& p)
 {
-    // Texel i covers [i, i + 1): its weight is its overlap with the span.
-    const auto overlap = [](int i, real lo, real hi) { return std::max<real>(0, std::min<real>(i + 1, hi) - std::max<real>(i, lo)); };
-    const int x0 = int(std::floor(s.x0)), x1 = std::min(int(std::ceil(s.x1)), depth.width());
-    const int y0 = int(std::floor(s.y0)), y1 = std::min(int(std::ceil(s.y1)), depth.height());
+    if (p.stored)
+        return stored_moments(*p.stored, [&](auto&& add) { for_span_texels(p.stored->width, p.stored->height, s, add); });
     return accumulate([&](auto&& add) {
-        for (int y = y0; y < y1; ++y) {
-            const real wy = overlap(y, s.y0, s.y1);
-            if (wy <= 0) continue;
-            for (int x = x0; x < x1; ++x) {
-                const real wx = overlap(x, s.x0, s.x1);
-                if (wx > 0) add(f(real(depth.at(0, x, y)), p), wx * wy);
-            }
-        }
+        for_span_texels(depth.width(), depth.height(), s,
+                        [&](int x, int y, real weight) { add(f(real(depth.at(0, x, y)), p), weight); });
     });
 }
 
@@ -336,9 +402,6 @@ Blockers msm_blockers(const Moments& raw, real z_f, real alpha)
 // ---- the methods on one receiver ------------------------------------------
 
 namespace {
-
-real positive_warp(real z, const Params& p) { return std::exp(real(p.positive) * (z - 1)); }
-real negative_warp(real z, const Params& p) { return -std::exp(-real(p.negative) * z); }
 
 struct Receiver64 {
     real u, v, z;  // u, v clamped into [0, 1]

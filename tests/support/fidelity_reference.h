@@ -45,6 +45,24 @@ enum class Method { Vsm, Vssm, Msm, MsmSoft, Evsm2, Evsm4 };
 std::string method_name(Method m);
 double tolerance(Method m);
 
+// Per-texel raw moments E[z^k], k = 1..4, for a storage whose texels are not
+// the powers of one depth: the opt-in 16-bit MSM table's dequantized
+// moments. Its decoding is affine, so a window's dequantized moments are the
+// window mean of its texels' (overlap-weighted for fractional windows).
+struct StoredMoments {
+    int width = 0, height = 0;
+    std::vector<std::array<real, 4>> texel;  // row-major
+};
+
+using Transform = long double (*)(long double z, const struct Params& p);
+
+// EVSM's warps of every texel of a map, row-major (an exp each: computed
+// once per map rather than once per window texel).
+struct WarpedMap {
+    std::vector<real> positive, negative;
+    const std::vector<real>* of(Transform f) const;
+};
+
 // Every parameter a method reads, with the library's defaults of the mode
 // `penumbra shade` uses when no precision or quantization option is given.
 struct Params {
@@ -58,6 +76,10 @@ struct Params {
     float evsm_depth_bias = 0.0f;   // evsm
     float positive = 5.545177f;     // evsm: c+
     float negative = 5.545177f;     // evsm4: c-
+    // msm, msm-soft: windows from these moments instead of the depths' powers.
+    const StoredMoments* stored = nullptr;
+    // evsm: the map's warps, when precomputed (warp_map); else warped per texel.
+    const WarpedMap* warped = nullptr;
 };
 
 // A rectangle of texels [x0, x1) x [y0, y1).
@@ -85,10 +107,12 @@ Moments from_raw(const std::array<real, 5>& raw);
 Moments perturbed(const Moments& m, int count, unsigned signs, real eps);
 
 // The map as read (float32 depths, one channel) and a per-texel transform.
-using Transform = real (*)(real z, const Params& p);
 Moments box_moments(const Image& depth, Box b, Transform f, const Params& p);
 Moments span_moments(const Image& depth, Span s, Transform f, const Params& p);
 real identity(real z, const Params& p);
+real positive_warp(real z, const Params& p);  // EVSM: e^{c+ (z - 1)}
+real negative_warp(real z, const Params& p);  // EVSM: -e^{-c- z}
+WarpedMap warp_map(const Image& depth, const Params& p);
 
 // The methods' arithmetic on given moments.
 real chebyshev_upper(const Moments& m, real z, real min_variance);
