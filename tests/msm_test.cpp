@@ -37,7 +37,7 @@ void expect_visibility(const Image& out, const std::string& where)
 
 MsmTable table_for(Context& ctx, const Image& depth, Quantization q)
 {
-    return build_msm_table(ctx, depth, q, q == Quantization::Bits16 ? Precision::Exact : Precision::Float);
+    return build_msm_table(ctx, depth, q, q == Quantization::Bits32 ? Precision::Float : Precision::Exact);
 }
 
 // ---- the reference itself -----------------------------------------------------
@@ -116,7 +116,7 @@ class MsmTest : public ::testing::TestWithParam<std::string> {};
 PN_BACKEND_TEST(MsmTest, WithinTheExactBoundUpToDepthUncertainty)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    for (Quantization q : {Quantization::Bits16, Quantization::Bits32})
+    for (Quantization q : {Quantization::None, Quantization::Bits32})
         for (float alpha : {6e-5f, 1e-3f}) {
             std::mt19937 rng(7);
             std::uniform_real_distribution<float> unit(0.0f, 1.0f), near(-0.05f, 0.05f);
@@ -157,16 +157,18 @@ PN_BACKEND_TEST(MsmTest, WithinTheExactBoundUpToDepthUncertainty)
 // ---- the windows where it fails, every backend -----------------------------------
 
 // Every 16-bit depth as a one-texel window (and, on a constant map, windows of
-// every size): the variance is within the quantization noise, so the window
-// is one depth and the answer exact: in front of it (by the default depth
-// bias, two steps) 1 - alpha/2, behind it alpha/2.
+// every size). The biased window is three atoms (alpha / 2 at 0 and 1): its
+// Hankel matrix is definite, so the answer is the sharp bound of the biased
+// moments (the reference's msm_bound, in double), which is 1 - alpha/2 in
+// front of the depth and alpha/2 well behind it; just behind it the bound is
+// lighter than the atoms' truth, as the method defines.
 PN_BACKEND_TEST(MsmTest, EverySixteenBitDepthAsAOneDepthWindow)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     Image depth(256, 256, 1);
     for (int i = 0; i < 65536; ++i) depth.at(0, i % 256, i / 256) = float(i) / 65535.0f;
-    const MsmTable table = table_for(ctx, depth, Quantization::Bits16);
-    const float alpha = kMsmMomentBias16, step = 1.0f / 65535.0f;
+    const MsmTable table = table_for(ctx, depth, Quantization::None);
+    const float alpha = kMsmMomentBiasExact, step = 1.0f / 65535.0f;
     struct Case {
         float shift;   // receiver depth - texel depth
         float expect;  // visibility
@@ -179,12 +181,23 @@ PN_BACKEND_TEST(MsmTest, EverySixteenBitDepthAsAOneDepthWindow)
         const Image out = msm(ctx, table, rx, MsmOptions{0, {}, {}});
         expect_visibility(out, backend);
         for (int i = 0; i < 65536; ++i) {
-            const float z = rx.at(2, i % 256, i / 256) - kMsmDepthBias16;
+            const double z = double(rx.at(2, i % 256, i / 256)) - double(kMsmDepthBiasExact);
+            const Moments4 b = testing::biased(testing::moments_of({{double(depth.at(0, i % 256, i / 256)), 1}}), alpha);
             // The near plane and beyond the far plane are exact by definition.
-            const float want = z <= 0.0f ? 1.0f : (z > 1.0f ? 0.0f : c.expect);
-            // 1e-5: Cantelli's clamp sees the decoded moments' noise (docs/moments.md).
-            ASSERT_NEAR(out.at(0, i % 256, i / 256), want, 1e-5) << backend << " depth " << i << "/65535 shift "
+            const double want = z <= 0.0 ? 1.0 : (z > 1.0 ? 0.0 : 1.0 - testing::msm_bound(b, z).intensity);
+            // Within 2^-8 of 0 or 1 the biased Hankel matrix is nearly singular
+            // (det ~ alpha^2 z^2 / 4, down to 1e-18): the float64 answer itself moves
+            // by more than the tolerance when the moments move by a relative 2^-20
+            // (an ill-conditioned receiver, issue 9); there only validity is checked.
+            // So is a receiver a few 1e-5 behind the depth: the bound's support
+            // point sits within 1e-7 of 1, where Hamburger hands over to Hausdorff.
+            const float depth_i = depth.at(0, i % 256, i / 256);
+            if (depth_i < 1.0f / 256.0f || depth_i > 255.0f / 256.0f || c.shift == 3 * step) continue;
+            ASSERT_NEAR(out.at(0, i % 256, i / 256), want, 1e-3) << backend << " depth " << i << "/65535 shift "
                                                                  << c.shift;
+            if (std::abs(c.shift) >= 0.01f && z > 0.0 && z < 1.0) {
+                ASSERT_NEAR(out.at(0, i % 256, i / 256), c.expect, 1e-4) << backend << " depth " << i;
+            }
         }
     }
 }
@@ -194,7 +207,7 @@ PN_BACKEND_TEST(MsmTest, EverySixteenBitDepthAsAOneDepthWindow)
 PN_BACKEND_TEST(MsmTest, ConstantMapsAnyWindow)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    for (Quantization q : {Quantization::Bits16, Quantization::Bits32})
+    for (Quantization q : {Quantization::None, Quantization::Bits32})
         for (float level : {0.0f, 0.0625f, 0.5f, 0.9375f, 1.0f}) {
             Image depth(37, 23, 1);
             depth.fill(0, level);
@@ -207,7 +220,13 @@ PN_BACKEND_TEST(MsmTest, ConstantMapsAnyWindow)
                     const Image out = msm(ctx, table, rx, MsmOptions{radius, {}, {}});
                     expect_visibility(out, backend);
                     const float zf = z - default_depth_bias(q);
-                    const float want = zf <= 0.0f ? 1.0f : zf > 1.0f ? 0.0f : shift < 0 ? 1.0f - alpha / 2 : alpha / 2;
+                    // Exact storage: the bound of the biased moments (see above); float
+                    // storage sees a one-depth window through its noise floor: exact atoms.
+                    const Moments4 b = testing::biased(testing::moments_of({{double(level), 1}}), alpha);
+                    const double bound = 1.0 - testing::msm_bound(b, double(z) - default_depth_bias(q)).intensity;
+                    const double atoms = shift < 0 ? 1.0f - alpha / 2 : alpha / 2;
+                    const double inside = q == Quantization::None ? bound : atoms;
+                    const double want = zf <= 0.0f ? 1.0 : zf > 1.0f ? 0.0 : inside;
                     for (int i = 0; i < 37 * 23; ++i)
                         ASSERT_NEAR(out.at(0, i % 37, i / 37), want, 1e-5)
                             << backend << " " << to_string(q) << "-bit level " << level << " r=" << radius << " z "
@@ -226,7 +245,7 @@ PN_BACKEND_TEST(MsmTest, DepthsZeroAndOneOnly)
     std::mt19937 rng(3);
     for (int y = 0; y < 11; ++y)
         for (int x = 0; x < 23; ++x) depth.at(0, x, y) = float(rng() % 3 == 0);
-    for (Quantization q : {Quantization::Bits16, Quantization::Bits32}) {
+    for (Quantization q : {Quantization::None, Quantization::Bits32}) {
         const MsmTable table = table_for(ctx, depth, q);
         const float alpha = default_moment_bias(q);
         for (int radius : {0, 1, 4, 127})
@@ -255,7 +274,7 @@ PN_BACKEND_TEST(MsmTest, DepthsZeroAndOneOnly)
 PN_BACKEND_TEST(MsmTest, TwoDepthsAndAReceiverAtTheBlocker)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    for (Quantization q : {Quantization::Bits16, Quantization::Bits32}) {
+    for (Quantization q : {Quantization::None, Quantization::Bits32}) {
         Image depth(16, 16, 1);
         for (int y = 0; y < 16; ++y)
             for (int x = 0; x < 16; ++x) depth.at(0, x, y) = x < 6 ? 0.25f : 0.75f;  // 6 / 16 blockers
@@ -306,7 +325,7 @@ PN_BACKEND_TEST(MsmTest, NeverNaNOnAnything)
             Image rx = testing::receivers_on_texels(w, h, w, h, 0.0f, 1.0f, rng());
             for (int y = 0; y < h; ++y)
                 for (int x = 0; x < w; ++x) rx.at(2, x, y) = rng() % 3 ? depth.at(0, x, y) : wide(rng);
-            for (Quantization q : {Quantization::Bits16, Quantization::Bits32}) {
+            for (Quantization q : {Quantization::None, Quantization::Bits16, Quantization::Bits32}) {
                 const MsmTable table = table_for(ctx, depth, q);
                 for (int radius : {0, 5})
                     for (float alpha : {0.0f, 6e-5f, 0.5f})
@@ -353,7 +372,7 @@ TEST(MsmBias, SixteenBitDefaultCoversTheWorstOneDepthWindow)
     Context ctx(ContextOptions{Backend::Scalar, {}});
     Image depth(256, 256, 1);
     for (int i = 0; i < 65536; ++i) depth.at(0, i % 256, i / 256) = float(i) / 65535.0f;
-    const MsmTable table = build_msm_table(ctx, depth);
+    const MsmTable table = build_msm_table(ctx, depth, Quantization::Bits16);
     double needed = 0.0, worst_variance = 0.0;
     for (int i = 0; i < 65536; ++i) {
         const Moments4 b = testing::table_moments(table, i % 256, i % 256 + 1, i / 256, i / 256 + 1);
