@@ -73,17 +73,17 @@ int main(int argc, char** argv)
                     if (is_soft(m)) settings.push_back({0, 0.02f});
                     else
                         for (int r : {0, 1, 2, 4, 8}) settings.push_back({r, 0.02f});
-                    for (Setting s : settings) {
-                        Params p;
-                        StoredMoments stored;
-                        const Image out = run_library(ctx, m, mode, map, rx, s, &p, &stored);
-                        const int radius = is_soft(m) ? -1 : s.radius;
+                    StoredMoments stored;
+                    std::vector<LibraryRun> runs = run_library(ctx, m, mode, map, rx, settings, &stored);
+                    for (std::size_t i = 0; i < runs.size(); ++i) {
+                        Params& p = runs[i].params;
+                        const int radius = is_soft(m) ? -1 : settings[i].radius;
                         if (p.stored) {  // the 16-bit opt-in: its arithmetic, then its quantization error
                             merge(rows[{int(m), mode_name(m, mode) + ", vs its dequantized moments", radius}],
-                                  judge_all(m, map, rx, out, p, 0));
+                                  judge_all(m, map, rx, runs[i].out, p, 0));
                             p.stored = nullptr;
                         }
-                        merge(rows[{int(m), mode_name(m, mode), radius}], judge_all(m, map, rx, out, p, 0));
+                        merge(rows[{int(m), mode_name(m, mode), radius}], judge_all(m, map, rx, runs[i].out, p, 0));
                     }
                 }
         }

@@ -90,25 +90,13 @@ Image receivers_at_texels(const Image& map, float dz)
 
 bool is_soft(Method m) { return m == Method::Vssm || m == Method::MsmSoft; }
 
-std::vector<Mode> modes_of(Method) { return {Mode::Default, Mode::Float}; }
-
-std::string mode_name(Method m, Mode mode)
+std::vector<Mode> modes_of(Method m)
 {
-    const bool msm = m == Method::Msm || m == Method::MsmSoft;
-    if (mode == Mode::Msm16) return "--quantize 16";
-    if (mode == Mode::Default) return msm ? "default (16-bit exact)" : "default (exact)";
-    return msm ? "--quantize 32 --precision float" : "--precision float";
+    if (m == Method::Msm || m == Method::MsmSoft) return {Mode::Default, Mode::Msm16};
+    return {Mode::Default};
 }
 
-
-namespace {
-
-int soft_max_radius(Mode mode, const Image& map)
-{
-    return mode == Mode::Float ? std::max(map.width(), map.height()) : kExactMaxRadius - 1;
-}
-
-}  // namespace
+std::string mode_name(Method, Mode mode) { return mode == Mode::Msm16 ? "--quantize 16" : "default"; }
 
 namespace {
 
@@ -122,7 +110,7 @@ StoredMoments dequantized(const MsmTable& t)
     for (int y = 0; y < d.height; ++y)
         for (int x = 0; x < d.width; ++x) {
             std::array<double, 4> o{};
-            for (int k = 0; k < 4; ++k) o[std::size_t(k)] = t.sums.exact_box_sum(k, x, x + 1, y, y + 1) / 65535.0;
+            for (int k = 0; k < 4; ++k) o[std::size_t(k)] = t.sums.exact_box_sum(k + 1, x, x + 1, y, y + 1) / 65535.0;
             const Moments4 b = optimized_decode(o);
             auto& texel = d.texel[std::size_t(y) * std::size_t(d.width) + std::size_t(x)];
             for (int k = 0; k < 4; ++k) texel[std::size_t(k)] = real(b[std::size_t(k + 1)]);
@@ -132,49 +120,65 @@ StoredMoments dequantized(const MsmTable& t)
 
 }  // namespace
 
-Image run_library(Context& ctx, Method m, Mode mode, const Image& map, const Image& rx, Setting s, Params* params,
-                  StoredMoments* stored)
+namespace {
+
+// Every setting's lookup in one table; `p` holds the table's parameters.
+template <class Table, class Lookup>
+std::vector<LibraryRun> lookups(const Table& table, const std::vector<Setting>& settings, const Params& p, Lookup lookup)
+{
+    std::vector<LibraryRun> runs;
+    for (Setting s : settings) {
+        LibraryRun r{lookup(table, s), p};
+        r.params.radius = s.radius;
+        r.params.light_size = s.light_size;
+        runs.push_back(std::move(r));
+    }
+    return runs;
+}
+
+}  // namespace
+
+std::vector<LibraryRun> run_library(Context& ctx, Method m, Mode mode, const Image& map, const Image& rx,
+                             const std::vector<Setting>& settings, StoredMoments* stored)
 {
     Params p;
-    p.radius = s.radius;
-    p.light_size = s.light_size;
-    p.max_radius = soft_max_radius(mode, map);
+    p.max_radius = kExactMaxRadius - 1;  // exact tables: the filter window and its slivers within 255 texels
     // The default mode is whatever the API's default arguments are: what
     // `penumbra shade` builds with no precision or quantization option.
-    const bool defaults = mode == Mode::Default;
-    Image out;
     if (m == Method::Vsm || m == Method::Vssm) {
-        const MomentTable t = defaults ? build_moment_table(ctx, map) : build_moment_table(ctx, map, 2, Precision::Float);
-        out = m == Method::Vsm ? vsm(ctx, t, rx, VsmOptions{s.radius, p.min_variance, p.bleed})
-                               : vssm(ctx, t, rx, VssmOptions{s.light_size, p.min_variance, p.bleed});
-    } else if (m == Method::Msm || m == Method::MsmSoft) {
-        const MsmTable t = defaults                ? build_msm_table(ctx, map)
-                           : mode == Mode::Msm16 ? build_msm_table(ctx, map, Quantization::Bits16, Precision::Exact)
-                                                 : build_msm_table(ctx, map, Quantization::Bits32, Precision::Float);
+        return lookups(build_moment_table(ctx, map), settings, p, [&](const MomentTable& t, Setting s) {
+            return m == Method::Vsm ? vsm(ctx, t, rx, VsmOptions{s.radius, p.min_variance, p.bleed})
+                                    : vssm(ctx, t, rx, VssmOptions{s.light_size, p.min_variance, p.bleed});
+        });
+    }
+    if (m == Method::Msm || m == Method::MsmSoft) {
+        const MsmTable t = mode == Mode::Msm16 ? build_msm_table(ctx, map, Quantization::Bits16, Precision::Exact)
+                                               : build_msm_table(ctx, map);
         if (mode == Mode::Msm16 && stored) {
             *stored = dequantized(t);
             p.stored = stored;
         }
         p.moment_bias = default_moment_bias(t.quantization);
         p.msm_depth_bias = default_depth_bias(t.quantization);
-        out = m == Method::Msm ? msm(ctx, t, rx, MsmOptions{s.radius, {}, {}})
-                               : msm_soft(ctx, t, rx, MsmSoftOptions{s.light_size, {}, {}});
-    } else {
-        EvsmWarp warp;
-        warp.channels = m == Method::Evsm2 ? 2 : 4;
-        if (!defaults) warp.quantization = Quantization::Bits32;
-        const EvsmTable t = build_evsm_table(ctx, map, warp, defaults ? Precision::Exact : Precision::Float);
-        p.positive = t.positive;
-        p.negative = t.negative;
+        return lookups(t, settings, p, [&](const MsmTable& table, Setting s) {
+            return m == Method::Msm ? msm(ctx, table, rx, MsmOptions{s.radius, {}, {}})
+                                    : msm_soft(ctx, table, rx, MsmSoftOptions{s.light_size, {}, {}});
+        });
+    }
+    EvsmWarp warp;
+    warp.channels = m == Method::Evsm2 ? 2 : 4;
+    const EvsmTable t = build_evsm_table(ctx, map, warp);
+    p.positive = t.positive;
+    p.negative = t.negative;
+    const EvsmOptions defaults;
+    p.min_variance = defaults.min_variance;
+    p.bleed = defaults.bleed;
+    p.evsm_depth_bias = defaults.depth_bias;
+    return lookups(t, settings, p, [&](const EvsmTable& table, Setting s) {
         EvsmOptions o;
         o.radius = s.radius;
-        p.min_variance = o.min_variance;
-        p.bleed = o.bleed;
-        p.evsm_depth_bias = o.depth_bias;
-        out = evsm(ctx, t, rx, o);
-    }
-    if (params) *params = p;
-    return out;
+        return evsm(ctx, table, rx, o);
+    });
 }
 
 std::vector<double> reference_all(Method m, const Image& map, const Image& rx, const Params& params)

@@ -29,10 +29,12 @@ Image receivers_for(const Image& map, int count, std::uint32_t seed);
 // One receiver per texel centre at depth offset `dz` from the texel's own depth.
 Image receivers_at_texels(const Image& map, float dz);
 
-// A mode of the library: how the tables are built.
+// A mode of the tool: how the tables are built. (The float tables that
+// `--precision float` and `--quantize 32` built before issue 9 left the
+// tool; the before table was measured at commit 94e0387, whose Mode::Float
+// built them.)
 enum class Mode {
     Default,  // what `penumbra shade` uses with no precision or quantization option
-    Float,    // --precision float (msm: --quantize 32 --precision float)
     Msm16,    // msm, msm-soft: the opt-in I3D 2015 16-bit quantization (--quantize 16)
 };
 std::string mode_name(Method m, Mode mode);
@@ -46,12 +48,17 @@ struct Setting {
 };
 bool is_soft(Method m);
 
-// Runs the library; returns its visibility and fills the reference's
-// parameters with those the library used. Mode::Msm16 also fills `stored`
-// with the table's dequantized per-texel moments and points the parameters
-// at them (the reference of the arithmetic after the quantization).
-Image run_library(Context& ctx, Method m, Mode mode, const Image& map, const Image& receivers, Setting s,
-                  Params* params, StoredMoments* stored = nullptr);
+// Runs the library: one table for the method and mode, then a lookup per
+// setting; each run has the library's visibility and the reference's
+// parameters (those the library used). Mode::Msm16 also fills `stored` with
+// the table's dequantized per-texel moments and points the parameters at
+// them (the reference of the arithmetic after the quantization).
+struct LibraryRun {
+    Image out;
+    Params params;
+};
+std::vector<LibraryRun> run_library(Context& ctx, Method m, Mode mode, const Image& map, const Image& receivers,
+                             const std::vector<Setting>& settings, StoredMoments* stored = nullptr);
 
 inline Receiver receiver_at(const Image& rx, int x, int y)
 {

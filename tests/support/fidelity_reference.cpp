@@ -356,20 +356,61 @@ real hausdorff(const Biased& b, real z_receiver)
 
 }  // namespace
 
+namespace {
+
+// Cantelli's two-sided bounds on P(Z < z) from the biased mean and variance.
+struct Cantelli {
+    real lower, upper;
+};
+
+Cantelli cantelli(const Biased& b, real z)
+{
+    Moments two;
+    two.centre = b.c;
+    two.central = {1, b.B[1], b.B[2], 0, 0};
+    Moments mirrored = two;
+    mirrored.centre = -b.c;
+    mirrored.central[1] = -b.B[1];
+    return {1 - chebyshev_upper(two, z, 0), chebyshev_upper(mirrored, -z, 0)};
+}
+
+// A biased Hankel matrix that is singular (or, for moments that no
+// distribution has, indefinite): the window's own one or two depths from
+// its raw moments, plus the bias atoms (kernels/msm.h's rule; exact where
+// the biased distribution has at most two points). A two-point fit outside
+// [-0.01, 1.01] is no distribution of depths: Cantelli's lower bound.
+real singular_intensity(const Moments& raw, const Biased& b, real z_f, real alpha)
+{
+    const TwoPoint t = two_points(bias(raw, 0));
+    real window = t.x1 < z_f ? 1 : 0;
+    if (t.w2 > 0)
+        window = t.x1 >= -0.01L && t.x2 <= 1.01L ? two_point_intensity(t, z_f) : cantelli(b, z_f).lower;
+    return (1 - alpha) * window + (z_f > 0 ? alpha / 2 : 0) + (z_f > 1 ? alpha / 2 : 0);
+}
+
+}  // namespace
+
 real msm_intensity(const Moments& raw, real z_f, real alpha)
 {
     if (z_f <= 0) return 0;
     if (z_f > 1) return 1;
     const Biased b = bias(raw, alpha);
     const Hankel h = factor(b);
-    if (!h.definite) return two_point_intensity(two_points(b), z_f);
-    const Canonical c = canonical(b, h, z_f);
     real g;
-    if (!(c.lo >= 0 && c.hi <= 1 && std::isfinite(c.lo) && std::isfinite(c.hi))) g = hausdorff(b, z_f);
-    else if (z_f <= c.lo) g = 0;
-    else if (z_f <= c.hi) g = lagrange_weight(b, c.lo, {z_f, c.hi});
-    else g = 1 - christoffel_weight(b, c, z_f);
-    return clampr(g, 0, 1);
+    if (!h.definite) g = singular_intensity(raw, b, z_f, alpha);
+    else {
+        const Canonical c = canonical(b, h, z_f);
+        if (!(c.lo >= 0 && c.hi <= 1 && std::isfinite(c.lo) && std::isfinite(c.hi))) g = hausdorff(b, z_f);
+        else if (z_f <= c.lo) g = 0;
+        else if (z_f <= c.hi) g = lagrange_weight(b, c.lo, {z_f, c.hi});
+        else g = 1 - christoffel_weight(b, c, z_f);
+    }
+    // Part of the method (kernels/msm.h): four moments can only sharpen
+    // Cantelli's two-moment bounds, so this clamp changes nothing for the
+    // moments of a distribution on [0, 1]; it decides for moment vectors
+    // that no such distribution has (the 16-bit quantization makes them).
+    const Cantelli bounds = cantelli(b, z_f);
+    return clampr(clampr(g, bounds.lower, bounds.upper), 0, 1);
 }
 
 Blockers msm_blockers(const Moments& raw, real z_f, real alpha)
