@@ -445,12 +445,13 @@ Blockers msm_blockers(const Moments& raw, real z_f, real alpha)
 namespace {
 
 struct Receiver64 {
-    real u, v, z;  // u, v clamped into [0, 1]
+    real u, v, z;      // u, v clamped into [0, 1]; z (msm-soft: z_f = z - depth_bias)
+    float geometry_z;  // the float32 depth the window geometry uses (msm-soft: z - depth_bias in float32)
 };
 
 Receiver64 widen(Receiver r)
 {
-    return {real(std::clamp(r.u, 0.0f, 1.0f)), real(std::clamp(r.v, 0.0f, 1.0f)), real(r.z)};
+    return {real(std::clamp(r.u, 0.0f, 1.0f)), real(std::clamp(r.v, 0.0f, 1.0f)), real(r.z), r.z};
 }
 
 // Chebyshev visibility of one warp (EVSM): floor min_variance x slope^2.
@@ -510,21 +511,37 @@ Answer box_method(Method m, const Image& depth, Receiver r, const Params& p, boo
 
 // ---- VSSM and MSM-soft: blocker search, penumbra, filter -----------------
 
+// The windows' geometry in float32, as the window contract states it
+// (kernels/vssm.h, /work/coord/issue9-contract.md): centre (u W, v H), the
+// half-widths and the clipped corners are float32 values, and so is the
+// blocker depth the filter width is computed from. Geometry decides which
+// texels a window holds (a corner a float rounding away from a texel edge
+// adds or drops a 1e-7 sliver of it); the arithmetic on the moments is
+// what the reference checks.
+Span float_span(const Image& depth, const Receiver64& r, float half_x, float half_y)
+{
+    const float W = float(depth.width()), H = float(depth.height());
+    const float cx = float(r.u) * W, cy = float(r.v) * H;
+    return {real(std::clamp(cx - half_x, 0.0f, W)), real(std::clamp(cx + half_x, 0.0f, W)),
+            real(std::clamp(cy - half_y, 0.0f, H)), real(std::clamp(cy + half_y, 0.0f, H))};
+}
+
 Span search_span(const Image& depth, const Receiver64& r, const Params& p)
 {
-    const real W = depth.width(), H = depth.height(), L = p.light_size;
-    return clip_span(depth.width(), depth.height(), r.u * W, r.v * H, std::max<real>(L * W / 2, 0.5L),
-                     std::max<real>(L * H / 2, 0.5L));
+    const auto half = [&](int texels) { return std::max(p.light_size * 0.5f * float(texels), 0.5f); };
+    return float_span(depth, r, half(depth.width()), half(depth.height()));
 }
 
 // PCSS: w = L (z - z_occ) / z_occ, a half-width of w W / 2 texels in [0.5, max_radius + 0.5].
 Span filter_span(const Image& depth, const Receiver64& r, real z_occ, const Params& p)
 {
-    const real occluder = std::max(z_occ, r.z * kVssmMinOccluder);
-    const real w = real(p.light_size) * (r.z - occluder) / occluder;
-    const auto half = [&](int texels) { return clampr(w * texels / 2, 0.5L, real(p.max_radius) + 0.5L); };
-    return clip_span(depth.width(), depth.height(), r.u * depth.width(), r.v * depth.height(), half(depth.width()),
-                     half(depth.height()));
+    const float zg = r.geometry_z;
+    const float occluder = std::max(float(z_occ), zg * float(kVssmMinOccluder));
+    const float w = p.light_size * (zg - occluder) / occluder;
+    const auto half = [&](int texels) {
+        return std::clamp(w * (0.5f * float(texels)), 0.5f, float(p.max_radius) + 0.5f);
+    };
+    return float_span(depth, r, half(depth.width()), half(depth.height()));
 }
 
 // The filter window's depth (z_occ) from the search moments, or lit.
@@ -542,7 +559,7 @@ Search soft_search(Method m, const Moments& search, const Receiver64& r, const P
         return {blocked < kVssmNoBlocker, (mean - pl * r.z) / std::max(blocked, kVssmNoBlocker)};
     }
     const Blockers k = msm_blockers(search, r.z, p.moment_bias);
-    return {k.weight < real(p.moment_bias) + kMsmNoBlocker || r.z <= 0, k.depth};
+    return {k.weight < real(p.moment_bias) + kMsmNoBlocker || r.geometry_z <= 0, k.depth};
 }
 
 real soft_filter_answer(Method m, const Moments& filter, const Receiver64& r, const Params& p)
@@ -554,7 +571,10 @@ real soft_filter_answer(Method m, const Moments& filter, const Receiver64& r, co
 Answer soft_method(Method m, const Image& depth, Receiver rf, const Params& p, bool with_movement)
 {
     Receiver64 r = widen(rf);
-    if (m == Method::MsmSoft) r.z -= real(p.msm_depth_bias);  // z_f throughout
+    if (m == Method::MsmSoft) {
+        r.z -= real(p.msm_depth_bias);  // z_f for the reconstruction
+        r.geometry_z = rf.z - p.msm_depth_bias;
+    }
     const Moments search = span_moments(depth, search_span(depth, r, p), identity, p);
     const auto answer_from = [&](const Moments& s, unsigned filter_signs, bool perturb_filter) {
         const Search found = soft_search(m, s, r, p);
