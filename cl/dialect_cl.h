@@ -94,6 +94,11 @@ PN_FN uint pn_uload(global const uint* plane, pn_dims d, int x, int y) { return 
 PN_FN void pn_ustore(global uint* plane, pn_dims d, int x, int y, uint v) { if (x < d.width) plane[pn_index(d, x, y)] = v; }
 PN_FN void pn_ustore_stream(global uint* plane, pn_dims d, int x, int y, uint v) { pn_ustore(plane, d, x, y, v); }
 PN_FN uint pn_ugather(global const uint* ptr, int index) { return ptr[index]; }
+PN_FN void pn_ugather_pair(global const uint* ptr, int index, uint* first, uint* second)
+{
+    *first = ptr[index];
+    *second = ptr[index + 1];
+}
 
 /* Many work-items may raise the same flag; all write the same value, 1. */
 PN_FN void pn_flag_any(global int* flags, int i, int m) { if (m) flags[i] = 1; }

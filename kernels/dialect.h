@@ -75,6 +75,9 @@
  *   pn_gather(ptr, index)           per-lane element index; the caller guarantees
  *                                   it is in bounds (every lane, active or not)
  *   pn_uload pn_ustore pn_ustore_stream pn_ugather  the same for uint data
+ *   pn_ugather_pair(ptr, index, &first, &second)  ptr[index] and ptr[index + 1]
+ *                                   per lane (both in bounds): one 64-bit gather
+ *                                   element per lane on SIMD instead of two
  *
  * Input checks (a kernel validates the values it reads, so that checking
  * costs no extra pass over memory; the host reports the first bad value)

@@ -346,9 +346,14 @@ PN_FN pn_float sat_fractional_sum_float(PN_GLOBAL const float* plane, pn_dims t,
  * float32 corners), the weighted sum rounds at 2^-53 relative. */
 PN_FN pn_double sat_fractional_sum_wrapped(PN_GLOBAL const uint* plane, pn_dims t, SatFractionalWindow w)
 {
+    /* Corners a and a + 1 of a row are adjacent elements: one pair gather each.
+     * The pair reads a + 1 unclamped: at a1 = width that is the row's zero
+     * padding (pitch > width), under the right sliver's weight t1 - a1 = 0. */
     pn_uint s[4][4];
-    for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) s[j][i] = pn_ugather(plane, sat_corner_index(t, w.x[i], w.y[j]));
+    for (int j = 0; j < 4; ++j) {
+        pn_ugather_pair(plane, sat_corner_index(t, w.x[0], w.y[j]), &s[j][0], &s[j][1]);
+        pn_ugather_pair(plane, sat_corner_index(t, w.x[2], w.y[j]), &s[j][2], &s[j][3]);
+    }
     pn_double total = 0.0;
     for (int j = 0; j < 3; ++j) {
         const int yl = sat_interval_lo(j), yh = sat_interval_hi(j);

@@ -65,6 +65,13 @@ static void sat_block_exact_fenced(const float* depth, u32* table, u32* carry, u
     sat_block_exact(depth, table, carry, columns, column_row, bad_rows, p, x0, x1, y0, y1);
     _mm_sfence();
 }
+// The probes' index lanes, loaded as uint and reinterpreted.
+#if defined(PN_ISA_scalar)
+static pn_int pn_uint_to_int_lanes(pn_uint v) { return pn_int(v); }
+#else
+static pn_int pn_uint_to_int_lanes(pn_uint v) { return xsimd::bitwise_cast<pn_int>(v); }
+#endif
+
 // One strip of the double lanes (simd/cpu_kernels.h, dialect_double_probe).
 #if defined(PN_ISA_scalar)
 static void probe_store(double* out, pn_double d) { *out = d; }
@@ -90,6 +97,14 @@ static void dialect_double_probe(const float* f, const u32* u, double* d, float*
     pn_store(g + 3 * kLanes, dims, 0, 0, pn_dany(dx > 0.75) ? 1.0f : 0.0f);
     pn_ustore(v, dims, 0, 0, pn_double_to_uint(pn_dfloor(pn_uint_to_double(n) / 2.0)));
 }
+static void dialect_gather_pair_probe(const u32* table, const int* index, u32* first, u32* second)
+{
+    const pn_dims dims{kLanes, 1, kLanes, kLanes};
+    pn_uint a, b;
+    pn_ugather_pair(table, pn_uint_to_int_lanes(pn_uload(reinterpret_cast<const u32*>(index), dims, 0, 0)), &a, &b);
+    pn_ustore(first, dims, 0, 0, a);
+    pn_ustore(second, dims, 0, 0, b);
+}
 }  // namespace penumbra::cpu::PN_ISA_NAMESPACE
 
 namespace penumbra::cpu {
@@ -105,6 +120,7 @@ static constexpr CpuKernels make_table()
     t.sat_block_float = &isa::sat_block_float_fenced;
     t.sat_block_exact = &isa::sat_block_exact_fenced;
     t.dialect_double_probe = &isa::dialect_double_probe;
+    t.dialect_gather_pair_probe = &isa::dialect_gather_pair_probe;
     t.sat_bands_float = &isa::sat_bands_float;
     t.sat_bands_exact = &isa::sat_bands_exact;
     t.sat_join_bands_float = &isa::sat_join_bands_float;

@@ -34,6 +34,8 @@ struct CpuKernels {
     // (f > 0.25 as a double mask) ? 1 : 0, g[3L + i] = any lane's double > 0.75;
     // v[i] = double_to_uint(floor(uint_to_double(u) / 2)).
     void (*dialect_double_probe)(const float* f, const u32* u, double* d, float* g, u32* v);
+    // pn_ugather_pair on one strip: first[i] = table[index[i]], second[i] = table[index[i] + 1].
+    void (*dialect_gather_pair_probe)(const u32* table, const int* index, u32* first, u32* second);
 
     // Entry points, in the order of kernels/registry.h.
     void (*sat_bands_float)(const float*, float*, float*, float*, int*, SatParams, int task);

@@ -108,6 +108,11 @@ PN_FN std::uint32_t pn_uload(const std::uint32_t* plane, pn_dims d, int x, int y
 PN_FN void pn_ustore(std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t v) { if (x < d.width) plane[pn_index(d, x, y)] = v; }
 PN_FN void pn_ustore_stream(std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t v) { pn_ustore(plane, d, x, y, v); }
 PN_FN std::uint32_t pn_ugather(const std::uint32_t* ptr, std::int32_t index) { return ptr[index]; }
+PN_FN void pn_ugather_pair(const std::uint32_t* ptr, std::int32_t index, std::uint32_t* first, std::uint32_t* second)
+{
+    *first = ptr[index];
+    *second = ptr[index + 1];
+}
 
 // Many lanes (threads) may raise the same flag; only ones are written, but the
 // store is atomic so that the race is defined.

@@ -287,6 +287,37 @@ PN_FN pn_uint pn_ugather(const uint* ptr, pn_int index)
 {
     return xsimd::bitwise_cast<pn_uint>(pn_gather(reinterpret_cast<const float*>(ptr), index));
 }
+// Two adjacent elements per lane, ptr[index] and ptr[index + 1]: one 64-bit
+// gather element per lane instead of two 32-bit ones, then the pairs are
+// split by a permute.
+PN_FN void pn_ugather_pair(const uint* ptr, pn_int index, pn_uint* first, pn_uint* second)
+{
+#if defined(PN_ISA_avx512)
+    const __m512i a = _mm512_i32gather_epi64(_mm512_castsi512_si256(index), ptr, 4);
+    const __m512i b = _mm512_i32gather_epi64(_mm512_extracti64x4_epi64(index, 1), ptr, 4);
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    const __m512i odd = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
+    *first = _mm512_permutex2var_epi32(a, even, b);
+    *second = _mm512_permutex2var_epi32(a, odd, b);
+#elif defined(PN_ISA_avx2)
+    const auto* base = reinterpret_cast<const long long*>(ptr);
+    const __m256i split = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
+    const __m256i a = _mm256_permutevar8x32_epi32(_mm256_i32gather_epi64(base, _mm256_castsi256_si128(index), 4), split);
+    const __m256i b = _mm256_permutevar8x32_epi32(_mm256_i32gather_epi64(base, _mm256_extracti128_si256(index, 1), 4), split);
+    *first = _mm256_permute2x128_si256(a, b, 0x20);
+    *second = _mm256_permute2x128_si256(a, b, 0x31);
+#else
+    alignas(64) std::int32_t lanes[kLanes];
+    alignas(64) uint a[kLanes], b[kLanes];
+    index.store_aligned(lanes);
+    for (int i = 0; i < kLanes; ++i) {
+        a[i] = ptr[lanes[i]];
+        b[i] = ptr[lanes[i] + 1];
+    }
+    *first = pn_uint::load_aligned(a);
+    *second = pn_uint::load_aligned(b);
+#endif
+}
 PN_FN pn_float pn_fetch(const float* plane, pn_dims d, pn_int x, pn_int y)
 {
     const pn_int cx = pn_iclamp(x, pn_int(0), pn_int(d.width - 1));

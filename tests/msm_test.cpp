@@ -35,6 +35,17 @@ void expect_visibility(const Image& out, const std::string& where)
         }
 }
 
+// The depths of VSM's box window around texel (x, y), one atom each.
+std::vector<Atom> window_atoms(const Image& depth, int x, int y, int radius)
+{
+    std::vector<Atom> atoms;
+    const int w = depth.width(), h = depth.height();
+    for (int j = std::max(y - radius, 0); j < std::min(y + radius + 1, h); ++j)
+        for (int i = std::max(x - radius, 0); i < std::min(x + radius + 1, w); ++i)
+            atoms.push_back({double(depth.at(0, i, j)), 1.0});
+    return atoms;
+}
+
 MsmTable table_for(Context& ctx, const Image& depth, Quantization q)
 {
     return build_msm_table(ctx, depth, q, q == Quantization::Bits32 ? Precision::Float : Precision::Exact);
@@ -138,10 +149,7 @@ PN_BACKEND_TEST(MsmTest, WithinTheExactBoundUpToDepthUncertainty)
                 expect_visibility(out, backend);
                 for (int y = 0; y < h; ++y)
                     for (int x = 0; x < w; ++x) {
-                        std::vector<Atom> atoms;
-                        for (int j = std::max(y - radius, 0); j < std::min(y + radius + 1, h); ++j)
-                            for (int i = std::max(x - radius, 0); i < std::min(x + radius + 1, w); ++i)
-                                atoms.push_back({depth.at(0, i, j), 1.0});
+                        const std::vector<Atom> atoms = window_atoms(depth, x, y, radius);
                         const double e = excess(atoms, alpha, rx.at(2, x, y), 1.0 - out.at(0, x, y), delta);
                         worst = std::max(worst, e);
                         ASSERT_LE(e, 0.01)
@@ -152,6 +160,64 @@ PN_BACKEND_TEST(MsmTest, WithinTheExactBoundUpToDepthUncertainty)
             std::printf("[ msm ] %s %s-bit alpha %g: worst excess over the exact bound (delta %g) %.4f\n",
                         backend.c_str(), to_string(q).c_str(), alpha, delta, worst);
         }
+}
+
+// The default storage (exact 3-limb tables) against MSM in double on the
+// float32 depths themselves (the reference's msm_bound of the biased window
+// moments): random continuous depths and two-layer maps, odd sizes, receivers
+// on, in front of and behind the surface. Receivers whose double answer moves
+// by more than 1e-3 when b4 moves by a relative 2^-20 (ill-conditioned, issue
+// 9) are only held to validity; the others to the method's 1e-3 (the worst is
+// printed).
+PN_BACKEND_TEST(MsmTest, DefaultStorageIsTheMethodInDouble)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    double worst = 0.0;
+    int checked = 0, skipped = 0;
+    for (int trial = 0; trial < 12; ++trial) {
+        const int w = 1 + int(rng() % 19), h = 1 + int(rng() % 9);
+        Image depth(w, h, 1);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                depth.at(0, x, y) = trial % 2 ? 0.2f + 0.6f * unit(rng) : (rng() % 3 ? 0.35f : 0.7f) + 1e-3f * unit(rng);
+        const MsmTable table = build_msm_table(ctx, depth);
+        Image rx = testing::receivers_on_texels(w, h, w, h, 0.0f, 1.0f, rng());
+        for (int i = 0; i < w * h; ++i) {
+            const int x = i % w, y = i / w;
+            if (i % 3 == 0) rx.at(2, x, y) = depth.at(0, x, y);
+            if (i % 3 == 1) rx.at(2, x, y) = depth.at(0, x, y) + 0.05f * (unit(rng) - 0.5f);
+        }
+        const float alpha = default_moment_bias(Quantization::None);
+        const double bias = default_depth_bias(Quantization::None);
+        for (int radius : {0, 1, 2, 8}) {
+            const Image out = msm(ctx, table, rx, MsmOptions{radius, {}, {}});
+            expect_visibility(out, backend);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const Moments4 b = testing::biased(testing::moments_of(window_atoms(depth, x, y, radius)), alpha);
+                    const double z = double(rx.at(2, x, y)) - bias;
+                    auto answer = [&](Moments4 m) {
+                        return z <= 0.0 ? 1.0 : z > 1.0 ? 0.0 : 1.0 - testing::msm_bound(m, z).intensity;
+                    };
+                    const double want = answer(b);
+                    Moments4 moved = b;
+                    moved[4] *= 1.0 + 0x1p-20;
+                    if (std::abs(answer(moved) - want) > 1e-3) {
+                        ++skipped;
+                        continue;
+                    }
+                    const double got = out.at(0, x, y);
+                    worst = std::max(worst, std::abs(got - want));
+                    ++checked;
+                    ASSERT_NEAR(got, want, 1e-3) << backend << " trial " << trial << " r=" << radius << " at " << x
+                                                 << "," << y << " z " << rx.at(2, x, y);
+                }
+        }
+    }
+    std::printf("[ msm ] %s: default storage, worst |kernel - double| %.2g over %d receivers (%d ill-conditioned)\n",
+                backend.c_str(), worst, checked, skipped);
 }
 
 // ---- the windows where it fails, every backend -----------------------------------
@@ -418,10 +484,7 @@ TEST(MsmBiasFigures, DISABLED_ExcessOverAlpha)
                 const Image out = msm(ctx, table_for(ctx, depth, q), rx, MsmOptions{radius, alpha, 0.0f});
                 for (int y = 0; y < h; ++y)
                     for (int x = 0; x < w; ++x) {
-                        std::vector<Atom> atoms;
-                        for (int j = std::max(y - radius, 0); j < std::min(y + radius + 1, h); ++j)
-                            for (int i = std::max(x - radius, 0); i < std::min(x + radius + 1, w); ++i)
-                                atoms.push_back({depth.at(0, i, j), 1.0});
+                        const std::vector<Atom> atoms = window_atoms(depth, x, y, radius);
                         const double deltas[3] = {1e-4, 1e-3, 1e-2};
                         for (int k = 0; k < 3; ++k)
                             worst[k] = std::max(worst[k], excess(atoms, alpha, rx.at(2, x, y),

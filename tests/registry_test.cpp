@@ -53,10 +53,10 @@ constexpr int registry_size()
     return n;
 }
 
-// isa, lanes, the two wavefront block functions, the double-lane probe, then
+// isa, lanes, the two wavefront block functions, the two dialect probes, then
 // one pointer per entry, then the three spans of the bilateral filter.
 static_assert(sizeof(cpu::CpuKernels) ==
-                  offsetof(cpu::CpuKernels, sat_block_float) + (6 + registry_size()) * sizeof(void (*)()),
+                  offsetof(cpu::CpuKernels, sat_block_float) + (7 + registry_size()) * sizeof(void (*)()),
               "CpuKernels has a member that kernels/registry.h lacks (or the reverse)");
 
 std::vector<std::string> cpu_tables()
@@ -110,6 +110,26 @@ TEST(DialectDouble, ConversionsArithmeticAndMasksOnEveryCpuBinding)
             EXPECT_EQ(g[2 * n + i], f[i] > 0.25f ? 1.0f : 0.0f) << isa << " lane " << i;
             EXPECT_EQ(g[3 * n + i], any_above ? 1.0f : 0.0f) << isa << " lane " << i;
             EXPECT_EQ(v[i], u[i] / 2u) << isa << " lane " << i;
+        }
+    }
+}
+
+// pn_ugather_pair (kernels/dialect.h) on every CPU binding: lane order across
+// the two 64-bit gathers of a strip, odd (not 8-byte aligned) indices.
+TEST(DialectGatherPair, AdjacentElementsPerLaneOnEveryCpuBinding)
+{
+    std::vector<cpu::u32> table(1000);
+    for (std::size_t i = 0; i < table.size(); ++i) table[i] = cpu::u32(0x9E3779B9u * (i + 1));
+    for (const std::string& isa : cpu_tables()) {
+        const cpu::CpuKernels& t = cpu::kernels_for(isa);
+        const int n = t.lanes;
+        std::vector<int> index(n);
+        std::vector<cpu::u32> first(n), second(n);
+        for (int i = 0; i < n; ++i) index[i] = (i * 37 + 11) % 900;  // odd and even, out of order
+        t.dialect_gather_pair_probe(table.data(), index.data(), first.data(), second.data());
+        for (int i = 0; i < n; ++i) {
+            EXPECT_EQ(first[i], table[index[i]]) << isa << " lane " << i;
+            EXPECT_EQ(second[i], table[index[i] + 1]) << isa << " lane " << i;
         }
     }
 }
