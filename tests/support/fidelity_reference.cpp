@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <utility>
 
 namespace penumbra::testing::fidelity {
@@ -512,7 +511,7 @@ Answer box_method(Method m, const Image& depth, Receiver r, const Params& p, boo
 // ---- VSSM and MSM-soft: blocker search, penumbra, filter -----------------
 
 // The windows' geometry in float32, as the window contract states it
-// (kernels/vssm.h, /work/coord/issue9-contract.md): centre (u W, v H), the
+// (kernels/vssm.h, docs/fidelity.md): centre (u W, v H), the
 // half-widths and the clipped corners are float32 values, and so is the
 // blocker depth the filter width is computed from. Geometry decides which
 // texels a window holds (a corner a float rounding away from a texel edge

@@ -3,14 +3,22 @@
 // mantissa) straight from the methods' formulas, by direct loops over the
 // window of the float32 input depths. Nothing here reads the library's
 // tables or kernels: the window contract, the formulas and the defaults are
-// written again from the method docs (docs/moments.md, docs/fidelity.md, the
-// kernel header comments and /work/coord/issue9-contract.md).
+// written again from the method docs (docs/moments.md, docs/fidelity.md and
+// the kernel header comments).
 //
 // Window contract (as `penumbra shade`): box methods take the (2r+1)^2 block
 // centred on the texel containing (u, v), u and v clamped into [0, 1] and the
 // texel clamped into the map, clipped to the map. VSSM and MSM-soft take
 // fractional windows centred at (u W, v H) whose texels are weighted by
-// their overlap (the exact integral of the piecewise-constant map).
+// their overlap (the exact integral of the piecewise-constant map); their
+// geometry (centre, half-widths, corners, the blocker depth the filter width
+// is computed from) is float32 as in the library, their arithmetic long double.
+//
+// MSM follows the method as kernels/msm.h defines it: the moment bias, the
+// Hamburger bound with the Hausdorff fallback, the window's own one or two
+// depths (plus the bias atoms) where the biased Hankel matrix is singular or
+// indefinite, and the clamp into Cantelli's bounds (a no-op for the moments
+// of any distribution on [0, 1]).
 //
 // Moments are formed about the window's own mean (E[(Z - c)^k] summed
 // directly), so that the float64 answer is not itself the victim of the
