@@ -29,8 +29,10 @@
  * pn_double): the means come exact to the storage's step from a limb table
  * (kernels/moment_table.h: 3 limbs, 2^-49) or, with the opt-in 16-bit
  * optimized quantization, as exact means of the 16-bit steps, dequantized
- * in double. The Hankel pivots of raw moments cancel by up to ~3500 (the
- * reason a float32 LDL^T failed); in double that costs 3500 x 2^-53.
+ * in double. The Hankel pivots of raw moments cancel by about 3500 on
+ * ordinary windows (the reason a float32 LDL^T failed), up to 1e8 at one
+ * depth near 0; in double that costs at most 1e8 x 2^-53 = 1e-8 relative,
+ * below the storage's own step, so the moments are not centred first.
  *
  * Where the moments cannot carry a four-moment answer (the shortcuts), only
  * where the Hankel matrix is singular to the arithmetic and storage:
@@ -42,10 +44,10 @@
  *  - a singular biased Hankel matrix: its last pivot d3 at most 2^-44 of
  *    b4' (double rounding, with margin) or `floor`. With alpha > 0 that
  *    happens only when the window's depths are (nearly) all 0 and 1, where
- *    the bias distribution lives, or at one depth very near 0 or 1 (d3 ~
- *    alpha z^2 (1 - z)^2 / ... falls below the floor), where the float64
- *    answer itself is ill-conditioned; with alpha = 0 at windows of one or
- *    two depths. There: the two-point distribution with the window's own
+ *    the bias distribution lives, or at one depth z very near 0 or 1
+ *    (det B' = (alpha / 2)^2 (1 - alpha) z^2 (1 - z)^2 falls towards the
+ *    floor), where the float64 answer itself is ill-conditioned; with
+ *    alpha = 0 at windows of one or two depths. There: the two-point distribution with the window's own
  *    moments (1, b1, b2, b3), support x1 <= x2 the roots of x^2 - s x + p,
  *    s = (b3 - b1 b2) / d2, p = (b1 b3 - b2^2) / d2, weight of x2
  *    (b1 - x1) / (x2 - x1); exact for a window of two depths. A fit that

@@ -293,8 +293,11 @@ PN_FN pn_uint pn_ugather(const uint* ptr, pn_int index)
 PN_FN void pn_ugather_pair(const uint* ptr, pn_int index, pn_uint* first, pn_uint* second)
 {
 #if defined(PN_ISA_avx512)
-    const __m512i a = _mm512_i32gather_epi64(_mm512_castsi512_si256(index), ptr, 4);
-    const __m512i b = _mm512_i32gather_epi64(_mm512_extracti64x4_epi64(index, 1), ptr, 4);
+    // The masked form with a zero source: GCC 12's unmasked one warns of an
+    // uninitialised source vector.
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i a = _mm512_mask_i32gather_epi64(zero, 0xFF, _mm512_castsi512_si256(index), ptr, 4);
+    const __m512i b = _mm512_mask_i32gather_epi64(zero, 0xFF, _mm512_extracti64x4_epi64(index, 1), ptr, 4);
     const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
     const __m512i odd = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
     *first = _mm512_permutex2var_epi32(a, even, b);
