@@ -100,6 +100,18 @@ PN_FN void pn_ugather_pair(global const uint* ptr, int index, uint* first, uint*
     *second = ptr[index + 1];
 }
 
+PN_FN void pn_ustore_pair_stream(global uint* plane, pn_dims d, int x, int y, uint first, uint second)
+{
+    if (x >= d.width) return;
+    plane[2 * pn_index(d, x, y)] = first;
+    plane[2 * pn_index(d, x, y) + 1] = second;
+}
+PN_FN void pn_uload_pair(global const uint* plane, pn_dims d, int x, int y, uint* first, uint* second)
+{
+    *first = x < d.width ? plane[2 * pn_index(d, x, y)] : 0u;
+    *second = x < d.width ? plane[2 * pn_index(d, x, y) + 1] : 0u;
+}
+
 /* Many work-items may raise the same flag; all write the same value, 1. */
 PN_FN void pn_flag_any(global int* flags, int i, int m) { if (m) flags[i] = 1; }
 PN_FN int pn_finite(float v) { return v - v == 0.0f; }

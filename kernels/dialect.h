@@ -78,6 +78,12 @@
  *   pn_ugather_pair(ptr, index, &first, &second)  ptr[index] and ptr[index + 1]
  *                                   per lane (both in bounds): one 64-bit gather
  *                                   element per lane on SIMD instead of two
+ *   pn_ustore_pair_stream(plane, dims, x, y, first, second)  two strips
+ *                                   interleaved: element 2 (y pitch + x + i) + 0 / + 1
+ *                                   get lane i of first / second (lanes past the
+ *                                   width not written); the limb tables' pair planes
+ *   pn_uload_pair(plane, dims, x, y, &first, &second)  its inverse (lanes past the
+ *                                   width read 0; not on a hot path)
  *
  * Input checks (a kernel validates the values it reads, so that checking
  * costs no extra pass over memory; the host reports the first bad value)

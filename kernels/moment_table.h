@@ -10,8 +10,13 @@
  *    (z^k, or EVSM's warps, computed in double from the float32 depth) is
  *    rounded to 16 L bits, v_q = round(v 2^(16L)) / 2^(16L) (error at most
  *    2^-(16L+1): 1.2e-10 for L = 2, 1.8e-15 for L = 3), and split into L
- *    16-bit limbs, most significant first; each limb has its own uint32
- *    plane of wrapping inclusive sums (plane k L + l: value k, limb l).
+ *    16-bit limbs, most significant first; each limb is summed in wrapping
+ *    uint32 (value k, limb l: "plane" k L + l of the carries and columns).
+ *    Storage: limbs 0 and 1 of value k are interleaved in one pair plane
+ *    (PN_PLANE k L, two plane pitches: element 2 i + l for corner index i), so
+ *    that one 64-bit gather fetches both limbs of a corner and a fractional
+ *    window's corner pair (a, a + 1) is 16 contiguous bytes; limb 2 of a
+ *    3-limb table has the plane after (PN_PLANE k L + 2).
  *    Limb 0 is at most 65536 (v = 1), the others at most 65535, so a wrapped
  *    window difference of a limb plane is the exact limb sum while the
  *    window holds A <= 65535 texels (255 x 255 = 65025 is the largest used),
@@ -147,13 +152,19 @@ PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
             sat_texel_values(z, p, moments, v);
             pn_uint q[PN_MAX_PLANES];
             for (int k = 0; k < moments; ++k) sat_limbs(v[k], limbs, q + k * limbs);
+            pn_uint sum[PN_MAX_PLANES];
             for (int k = 0; k < planes; ++k) {
                 PN_GLOBAL uint* column = PN_PLANE(columns, p.columns, k);
                 const pn_uint row_prefix = pn_uscan_add(q[k]) + row_sum[k];
-                const pn_uint sum = pn_uload(column, p.columns, x, column_row) + row_prefix;
-                pn_ustore(column, p.columns, x, column_row, sum);
-                pn_ustore_stream(PN_PLANE(table, p.table, k), p.table, x, y + 1, sum);
+                sum[k] = pn_uload(column, p.columns, x, column_row) + row_prefix;
+                pn_ustore(column, p.columns, x, column_row, sum[k]);
                 row_sum[k] = pn_ulast(row_prefix);
+            }
+            for (int k = 0; k < moments; ++k) {
+                pn_ustore_pair_stream(PN_PLANE(table, p.table, k * limbs), p.table, x, y + 1, sum[k * limbs],
+                                      sum[k * limbs + 1]);
+                if (limbs == 3)
+                    pn_ustore_stream(PN_PLANE(table, p.table, k * limbs + 2), p.table, x, y + 1, sum[k * limbs + 2]);
             }
         }
         for (int k = 0; k < planes; ++k) carry[k * p.depth.height + y] = pn_ulast_value(row_sum[k]);
@@ -223,12 +234,29 @@ PN_KERNEL void sat_join_bands_exact(PN_GLOBAL uint* table, PN_GLOBAL const uint*
     PN_PIXEL_BEGIN(p.depth.width, p.depth.height);
     const int band = pn_y / p.band_height;
     if (band == 0) return;
+    pn_uint above[PN_MAX_PLANES];
     for (int k = 0; k < p.moments * p.limbs; ++k) {
         PN_GLOBAL const uint* column = PN_PLANE(columns, p.columns, k);
-        pn_uint above = 0u;
-        for (int b = 0; b < band; ++b) above = above + pn_uload(column, p.columns, pn_x, b);
-        PN_GLOBAL uint* plane = PN_PLANE(table, p.table, k);
-        pn_ustore(plane, p.table, pn_x, pn_y + 1, pn_uload(plane, p.table, pn_x, pn_y + 1) + above);
+        above[k] = 0u;
+        for (int b = 0; b < band; ++b) above[k] = above[k] + pn_uload(column, p.columns, pn_x, b);
+    }
+    for (int k = 0; k < p.moments; ++k) {
+        if (p.limbs == 1) {
+            PN_GLOBAL uint* plane = PN_PLANE(table, p.table, k);
+            pn_ustore(plane, p.table, pn_x, pn_y + 1, pn_uload(plane, p.table, pn_x, pn_y + 1) + above[k]);
+            continue;
+        }
+        /* The limb tables' layout (top of this file): a pair plane, then limb 2. */
+        PN_GLOBAL uint* pair = PN_PLANE(table, p.table, k * p.limbs);
+        pn_uint first, second;
+        pn_uload_pair(pair, p.table, pn_x, pn_y + 1, &first, &second);
+        pn_ustore_pair_stream(pair, p.table, pn_x, pn_y + 1, first + above[k * p.limbs],
+                              second + above[k * p.limbs + 1]);
+        if (p.limbs == 3) {
+            PN_GLOBAL uint* plane = PN_PLANE(table, p.table, k * p.limbs + 2);
+            pn_ustore(plane, p.table, pn_x, pn_y + 1,
+                      pn_uload(plane, p.table, pn_x, pn_y + 1) + above[k * p.limbs + 2]);
+        }
     }
 }
 
@@ -264,6 +292,20 @@ PN_FN pn_uint sat_box_sum_wrapped(PN_GLOBAL const uint* plane, pn_dims t, pn_int
     return (s11 - s01) - (s10 - s00);
 }
 
+/* The same over a pair plane: both limbs of the four corners, one 64-bit
+ * gather element per corner and lane. */
+PN_FN void sat_box_sum_pair(PN_GLOBAL const uint* pair, pn_dims t, pn_int x0, pn_int x1, pn_int y0, pn_int y1,
+                            pn_uint* first, pn_uint* second)
+{
+    pn_uint a0, a1, b0, b1, c0, c1, d0, d1;
+    pn_ugather_pair(pair, sat_corner_index(t, x0, y0) * 2, &a0, &a1);
+    pn_ugather_pair(pair, sat_corner_index(t, x1, y0) * 2, &b0, &b1);
+    pn_ugather_pair(pair, sat_corner_index(t, x0, y1) * 2, &c0, &c1);
+    pn_ugather_pair(pair, sat_corner_index(t, x1, y1) * 2, &d0, &d1);
+    *first = (d0 - c0) - (b0 - a0);
+    *second = (d1 - c1) - (b1 - a1);
+}
+
 /* The value of one step of limb 0: 2^-16 in limb tables; a table of one
  * limb per value holds 16-bit steps v * 65535 instead (kernels/encoded_table.h,
  * the opt-in 16-bit storages). */
@@ -278,10 +320,16 @@ PN_FN double sat_limb_unit(int limbs)
 PN_FN pn_double sat_limb_box_sum(PN_GLOBAL const uint* table, pn_dims t, int limbs, int k, double unit, pn_int x0,
                                  pn_int x1, pn_int y0, pn_int y1)
 {
+    pn_uint s[3];
+    if (limbs == 1) {
+        s[0] = sat_box_sum_wrapped(PN_PLANE(table, t, k), t, x0, x1, y0, y1);
+    } else {
+        sat_box_sum_pair(PN_PLANE(table, t, k * limbs), t, x0, x1, y0, y1, &s[0], &s[1]);
+        if (limbs == 3) s[2] = sat_box_sum_wrapped(PN_PLANE(table, t, k * limbs + 2), t, x0, x1, y0, y1);
+    }
     pn_double total = 0.0;
     for (int l = 0; l < limbs; ++l) {
-        const pn_uint s = sat_box_sum_wrapped(PN_PLANE(table, t, k * limbs + l), t, x0, x1, y0, y1);
-        total = total + pn_uint_to_double(s) * unit;
+        total = total + pn_uint_to_double(s[l]) * unit;
         unit = unit * (1.0 / 65536.0);
     }
     return total;
@@ -341,19 +389,36 @@ PN_FN pn_float sat_fractional_sum_float(PN_GLOBAL const float* plane, pn_dims t,
     return total;
 }
 
-/* One uint plane over a fractional window, in double: every integer
- * rectangle is exact, the weights are exact in double (differences of
- * float32 corners), the weighted sum rounds at 2^-53 relative. */
-PN_FN pn_double sat_fractional_sum_wrapped(PN_GLOBAL const uint* plane, pn_dims t, SatFractionalWindow w)
+/* The 4 x 4 corner values s[row][column] of a fractional window, of one uint
+ * plane. Corners a and a + 1 of a row are adjacent elements: one pair gather
+ * each. The pair reads a + 1 unclamped: at a1 = width that is the row's zero
+ * padding (pitch > width), under the right sliver's weight t1 - a1 = 0. */
+PN_FN void sat_fractional_corners(PN_GLOBAL const uint* plane, pn_dims t, SatFractionalWindow w, pn_uint s[4][4])
 {
-    /* Corners a and a + 1 of a row are adjacent elements: one pair gather each.
-     * The pair reads a + 1 unclamped: at a1 = width that is the row's zero
-     * padding (pitch > width), under the right sliver's weight t1 - a1 = 0. */
-    pn_uint s[4][4];
     for (int j = 0; j < 4; ++j) {
         pn_ugather_pair(plane, sat_corner_index(t, w.x[0], w.y[j]), &s[j][0], &s[j][1]);
         pn_ugather_pair(plane, sat_corner_index(t, w.x[2], w.y[j]), &s[j][2], &s[j][3]);
     }
+}
+
+/* The same for both limbs of a pair plane: the corner pair (a, a + 1) is
+ * 16 contiguous bytes (two pair gathers), limb 0 into s0, limb 1 into s1. */
+PN_FN void sat_fractional_corners_pair(PN_GLOBAL const uint* pair, pn_dims t, SatFractionalWindow w,
+                                       pn_uint s0[4][4], pn_uint s1[4][4])
+{
+    for (int j = 0; j < 4; ++j)
+        for (int c = 0; c < 4; c += 2) {
+            const pn_int i = sat_corner_index(t, w.x[c], w.y[j]) * 2;
+            pn_ugather_pair(pair, i, &s0[j][c], &s1[j][c]);
+            pn_ugather_pair(pair, i + 2, &s0[j][c + 1], &s1[j][c + 1]);
+        }
+}
+
+/* One plane's corner values weighted over a fractional window, in double:
+ * every integer rectangle is exact, the weights are exact in double
+ * (differences of float32 corners), the weighted sum rounds at 2^-53 relative. */
+PN_FN pn_double sat_fractional_weighted(pn_uint s[4][4], SatFractionalWindow w)
+{
     pn_double total = 0.0;
     for (int j = 0; j < 3; ++j) {
         const int yl = sat_interval_lo(j), yh = sat_interval_hi(j);
@@ -372,9 +437,16 @@ PN_FN pn_double sat_fractional_sum_wrapped(PN_GLOBAL const uint* plane, pn_dims 
 PN_FN pn_double sat_limb_fractional_sum(PN_GLOBAL const uint* table, pn_dims t, int limbs, int k, double unit,
                                         SatFractionalWindow w)
 {
+    pn_uint s[3][4][4];
+    if (limbs == 1) {
+        sat_fractional_corners(PN_PLANE(table, t, k), t, w, s[0]);
+    } else {
+        sat_fractional_corners_pair(PN_PLANE(table, t, k * limbs), t, w, s[0], s[1]);
+        if (limbs == 3) sat_fractional_corners(PN_PLANE(table, t, k * limbs + 2), t, w, s[2]);
+    }
     pn_double total = 0.0;
     for (int l = 0; l < limbs; ++l) {
-        total = total + sat_fractional_sum_wrapped(PN_PLANE(table, t, k * limbs + l), t, w) * unit;
+        total = total + sat_fractional_weighted(s[l], w) * unit;
         unit = unit * (1.0 / 65536.0);
     }
     return total;

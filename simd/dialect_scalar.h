@@ -114,6 +114,18 @@ PN_FN void pn_ugather_pair(const std::uint32_t* ptr, std::int32_t index, std::ui
     *second = ptr[index + 1];
 }
 
+PN_FN void pn_ustore_pair_stream(std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t first, std::uint32_t second)
+{
+    if (x >= d.width) return;
+    plane[2 * pn_index(d, x, y)] = first;
+    plane[2 * pn_index(d, x, y) + 1] = second;
+}
+PN_FN void pn_uload_pair(const std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t* first, std::uint32_t* second)
+{
+    *first = x < d.width ? plane[2 * pn_index(d, x, y)] : 0u;
+    *second = x < d.width ? plane[2 * pn_index(d, x, y) + 1] : 0u;
+}
+
 // Many lanes (threads) may raise the same flag; only ones are written, but the
 // store is atomic so that the race is defined.
 PN_FN void pn_flag_any(int* flags, int i, bool m)

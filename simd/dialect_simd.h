@@ -13,7 +13,11 @@ using pn_uint = xsimd::batch<std::uint32_t, PN_ARCH>;
 using pn_mask = xsimd::batch_bool<float, PN_ARCH>;
 using uint = std::uint32_t;
 
-#define PN_FN static inline
+// Every description function is inlined into its kernel: the kernels pass
+// SIMD vectors between many small functions, and a call passes them through
+// memory. GCC's own heuristics stopped inlining the table queries once the
+// limb tables made them larger (measured: docs/moments.md, "Speed after issue 9").
+#define PN_FN static inline __attribute__((always_inline))
 #define PN_KERNEL static inline
 #define PN_GLOBAL
 
@@ -320,6 +324,55 @@ PN_FN void pn_ugather_pair(const uint* ptr, pn_int index, pn_uint* first, pn_uin
     *first = pn_uint::load_aligned(a);
     *second = pn_uint::load_aligned(b);
 #endif
+}
+// Two strips interleaved lane by lane, (first[i], second[i]) at elements
+// 2 (y pitch + x + i) + 0 / 1: the pair planes of the limb tables
+// (kernels/moment_table.h). The interleave is a two-source permute.
+PN_FN void pn_ustore_pair_stream(uint* plane, pn_dims d, int x, int y, pn_uint first, pn_uint second)
+{
+#if defined(PN_ISA_avx512)
+    const __m512i low = _mm512_setr_epi32(0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
+    const __m512i high = _mm512_setr_epi32(8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31);
+    const pn_uint a = _mm512_permutex2var_epi32(first, low, second);
+    const pn_uint b = _mm512_permutex2var_epi32(first, high, second);
+#elif defined(PN_ISA_avx2)
+    const __m256i u0 = _mm256_unpacklo_epi32(first, second);  // f0 s0 f1 s1 | f4 s4 f5 s5
+    const __m256i u1 = _mm256_unpackhi_epi32(first, second);  // f2 s2 f3 s3 | f6 s6 f7 s7
+    const pn_uint a = _mm256_permute2x128_si256(u0, u1, 0x20);
+    const pn_uint b = _mm256_permute2x128_si256(u0, u1, 0x31);
+#else
+    const pn_uint a = _mm_unpacklo_epi32(first, second);
+    const pn_uint b = _mm_unpackhi_epi32(first, second);
+#endif
+    uint* p = plane + 2 * (std::size_t(y) * std::size_t(d.pitch) + std::size_t(x));
+    const int valid = d.width - x;
+    if (valid >= kLanes) {
+        if (reinterpret_cast<std::uintptr_t>(p) % (sizeof(uint) * kLanes) == 0) {
+            pn_stream_store(p, a);
+            pn_stream_store(p + kLanes, b);
+        } else {
+            a.store_unaligned(p);
+            b.store_unaligned(p + kLanes);
+        }
+        return;
+    }
+    alignas(64) uint tail[2 * kLanes];
+    a.store_aligned(tail);
+    b.store_aligned(tail + kLanes);
+    std::memcpy(p, tail, 2 * sizeof(uint) * std::size_t(valid > 0 ? valid : 0));
+}
+// Its inverse, lane by lane through memory: only the OpenCL-style join pass
+// reads pair planes back, never on the CPU backends' hot paths.
+PN_FN void pn_uload_pair(const uint* plane, pn_dims d, int x, int y, pn_uint* first, pn_uint* second)
+{
+    const uint* p = plane + 2 * (std::size_t(y) * std::size_t(d.pitch) + std::size_t(x));
+    alignas(64) uint a[kLanes] = {}, b[kLanes] = {};
+    for (int i = 0; i < kLanes && i < d.width - x; ++i) {
+        a[i] = p[2 * i];
+        b[i] = p[2 * i + 1];
+    }
+    *first = pn_uint::load_aligned(a);
+    *second = pn_uint::load_aligned(b);
 }
 PN_FN pn_float pn_fetch(const float* plane, pn_dims d, pn_int x, pn_int y)
 {

@@ -35,11 +35,32 @@ void check_rectangle(const MomentTable& t, int k, int count, int x0, int x1, int
                                         ") is empty or outside the map");
 }
 
+// Two zero elements after every row: the pair planes of a 3-limb table read
+// the pair before their origin (corner (0, 0)), which is the last two
+// elements of the limb-2 plane before them (kernels/moment_table.h, layout).
+int table_pitch(int width) { return padded_pitch(width + 1); }
+
+// Where plane `plane` (0-based: value plane / limbs, limb plane % limbs) of a
+// table lives: the first element of its plane group and the elements per
+// entry of the group (2 for a limb table's pair plane of limbs 0 and 1,
+// interleaved; else 1), as kernels/moment_table.h lays them out.
+struct PlaneSlot {
+    std::size_t group;  // in plane pitches from the origin
+    int stride, lane;
+};
+PlaneSlot plane_slot(int plane, int limbs)
+{
+    const int k = plane / limbs, l = plane % limbs;
+    if (limbs == 1) return {std::size_t(plane), 1, 0};
+    if (l < 2) return {std::size_t(k * limbs), 2, l};
+    return {std::size_t(k * limbs + 2), 1, 0};
+}
+
 }  // namespace
 
 MomentTable::MomentTable(int width, int height, int moments, Precision precision, int limbs, TableValues values)
-    : width_(width), height_(height), pitch_(padded_pitch(width)),
-      plane_pitch_(std::size_t(padded_pitch(width)) * std::size_t(height + 1)), moments_(moments),
+    : width_(width), height_(height), pitch_(table_pitch(width)),
+      plane_pitch_(std::size_t(table_pitch(width)) * std::size_t(height + 1)), moments_(moments),
       limbs_(precision == Precision::Exact ? limbs : 1), precision_(precision), values_(values)
 {
     require(width > 0 && height > 0, "MomentTable", "the map is empty");
@@ -54,6 +75,7 @@ MomentTable::MomentTable(int width, int height, int moments, Precision precision
 // zeros the corner queries read (the lead before the origin, each plane's
 // zero row, the padding after every row, which is the next row's column -1)
 // are set here, in parallel, so that the fresh pages fault on every thread.
+// A pair plane's rows hold 2 pitches of elements, its texels 2 W of them.
 void MomentTable::zero_borders()
 {
     std::byte* base = storage_.data();
@@ -61,10 +83,13 @@ void MomentTable::zero_borders()
     const std::size_t rows = std::size_t(height_ + 1) * std::size_t(planes());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 64), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t row = r.begin(); row < r.end(); ++row) {
-            std::byte* start = base + (kLead + row * std::size_t(pitch_)) * kElementSize;
-            const bool zero_row = row % std::size_t(height_ + 1) == 0;
-            const std::size_t from = zero_row ? 0 : std::size_t(width_);
-            std::memset(start + from * kElementSize, 0, (std::size_t(pitch_) - from) * kElementSize);
+            const std::size_t plane = row / std::size_t(height_ + 1), y = row % std::size_t(height_ + 1);
+            const PlaneSlot slot = plane_slot(int(plane), limbs_);
+            if (slot.lane != 0) continue;  // the pair plane's rows are zeroed with limb 0
+            const std::size_t row_elements = std::size_t(slot.stride) * std::size_t(pitch_);
+            std::byte* start = base + (kLead + slot.group * plane_pitch_ + y * row_elements) * kElementSize;
+            const std::size_t from = y == 0 ? 0 : std::size_t(slot.stride) * std::size_t(width_);
+            std::memset(start + from * kElementSize, 0, (row_elements - from) * kElementSize);
         }
     });
 }
@@ -88,8 +113,9 @@ std::uint32_t MomentTable::exact_box_sum(int plane_index, int x0, int x1, int y0
 {
     check_rectangle(*this, plane_index, planes(), x0, x1, y0, y1);
     require(precision_ == Precision::Exact, "MomentTable::exact_box_sum", "the table is not exact");
-    const std::uint32_t* plane = exact_origin() + plane_pitch_ * std::size_t(plane_index - 1);
-    auto corner = [&](int x, int y) { return plane[std::ptrdiff_t(y) * pitch_ + x - 1]; };
+    const PlaneSlot slot = plane_slot(plane_index - 1, limbs_);
+    const std::uint32_t* plane = exact_origin() + plane_pitch_ * slot.group + slot.lane;
+    auto corner = [&](int x, int y) { return plane[(std::ptrdiff_t(y) * pitch_ + x - 1) * slot.stride]; };
     return (corner(x1, y1) - corner(x0, y1)) - (corner(x1, y0) - corner(x0, y0));
 }
 
