@@ -94,10 +94,12 @@ PN_FN uint pn_uload(global const uint* plane, pn_dims d, int x, int y) { return 
 PN_FN void pn_ustore(global uint* plane, pn_dims d, int x, int y, uint v) { if (x < d.width) plane[pn_index(d, x, y)] = v; }
 PN_FN void pn_ustore_stream(global uint* plane, pn_dims d, int x, int y, uint v) { pn_ustore(plane, d, x, y, v); }
 PN_FN uint pn_ugather(global const uint* ptr, int index) { return ptr[index]; }
+/* One 8-byte load (vload2 needs only the element's alignment). */
 PN_FN void pn_ugather_pair(global const uint* ptr, int index, uint* first, uint* second)
 {
-    *first = ptr[index];
-    *second = ptr[index + 1];
+    const uint2 pair = vload2(0, ptr + index);
+    *first = pair.x;
+    *second = pair.y;
 }
 
 PN_FN void pn_ustore_pair_stream(global uint* plane, pn_dims d, int x, int y, uint first, uint second)
