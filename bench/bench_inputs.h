@@ -19,9 +19,10 @@
 namespace penumbra::bench {
 
 // Bytes the table build moves per texel, by the project's definition: the
-// 4-byte depth read plus one 4-byte element written per moment. Both precisions
-// store 4-byte elements. The memcpy and OpenCV cases count the same figure.
-constexpr std::size_t table_bytes_per_texel(int moments) { return 4 + 4 * std::size_t(moments); }
+// 4-byte depth read plus one 4-byte element written per plane (an exact limb
+// table has moments x limbs planes: VSM's 2 x 2 = 20 B/texel; a float table
+// one per moment, 12 B). The memcpy case copies the exact table's figure.
+constexpr std::size_t table_bytes_per_texel(int planes) { return 4 + 4 * std::size_t(planes); }
 
 const Image& depth_map(int size);   // size x size, 1 channel
 const Image& receivers(int size);   // size x size, 3 channels (u, v, z)

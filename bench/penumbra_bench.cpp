@@ -134,7 +134,7 @@ void register_memcpy()
     constexpr std::size_t kChunk = std::size_t(1) << 20;
     for (int size : kSizes)
         for (int threads : kThreads) {
-            const std::size_t moved = std::size_t(size) * size * table_bytes_per_texel(kMoments);
+            const std::size_t moved = std::size_t(size) * size * table_bytes_per_texel(kMoments * kVsmLimbs);
             auto fn = [=](benchmark::State& state) {
                 const CopyBuffers& buf = copy_buffers(moved / 2);
                 const std::size_t chunks = (buf.bytes + kChunk - 1) / kChunk;
@@ -188,8 +188,8 @@ void register_table(const std::string& backend, const std::vector<int>& sizes, c
                                 benchmark::DoNotOptimize(table.storage());
                             });
                         }
-                        set_rates(state, double(size) * size,
-                                  double(size) * size * table_bytes_per_texel(kMoments));
+                        const int planes = precision == Precision::Exact ? kMoments * kVsmLimbs : kMoments;
+                        set_rates(state, double(size) * size, double(size) * size * table_bytes_per_texel(planes));
                     };
                     finish_registration(benchmark::RegisterBenchmark(name.c_str(), fn));
                 }

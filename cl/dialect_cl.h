@@ -8,6 +8,9 @@
  * description says pn_fma.
  */
 #pragma OPENCL FP_CONTRACT OFF
+/* Double lanes need fp64; the host refuses a device without it before it
+ * builds the program (cl/opencl_runtime.cpp). */
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
 
 typedef float pn_float;
 typedef int pn_int;
@@ -48,6 +51,30 @@ PN_FN uint pn_ushl(uint v, int n) { return v << n; }
 PN_FN uint pn_as_uint(float v) { return as_uint(v); }
 PN_FN float pn_as_float(uint v) { return as_float(v); }
 
+/* Double lanes (kernels/dialect.h): a scalar double per work-item. */
+typedef double pn_double;
+typedef int pn_dmask;
+PN_FN double pn_to_double(float v) { return (double)v; }
+PN_FN float pn_double_to_float(double v) { return (float)v; }
+PN_FN double pn_int_to_double(int v) { return (double)v; }
+PN_FN double pn_uint_to_double(uint v) { return (double)v; }
+PN_FN uint pn_double_to_uint(double v) { return (uint)(int)v; }
+PN_FN double pn_dmin(double a, double b) { return a < b ? a : b; }
+PN_FN double pn_dmax(double a, double b) { return a > b ? a : b; }
+PN_FN double pn_dclamp(double v, double lo, double hi) { return pn_dmin(pn_dmax(v, lo), hi); }
+PN_FN double pn_dabs(double v) { return fabs(v); }
+PN_FN double pn_dsqrt(double v) { return sqrt(v); }
+PN_FN double pn_dfloor(double v) { return floor(v); }
+PN_FN double pn_dexp(double v) { return exp(v); }
+PN_FN double pn_dselect(int m, double a, double b) { return m ? a : b; }
+PN_FN int pn_dand(int a, int b) { return a && b; }
+PN_FN int pn_dor(int a, int b) { return a || b; }
+PN_FN int pn_dnot(int a) { return !a; }
+PN_FN int pn_dany(int m) { return m; }
+PN_FN int pn_dfinite(double v) { return v - v == 0.0; }
+PN_FN int pn_dmask_to_mask(int m) { return m; }
+PN_FN int pn_mask_to_dmask(int m) { return m; }
+
 #define PN_PLANE(ptr, dims, c) ((ptr) + (size_t)(c) * (size_t)(dims).plane_pitch)
 
 PN_FN size_t pn_index(pn_dims d, int x, int y) { return (size_t)y * (size_t)d.pitch + (size_t)x; }
@@ -67,6 +94,25 @@ PN_FN uint pn_uload(global const uint* plane, pn_dims d, int x, int y) { return 
 PN_FN void pn_ustore(global uint* plane, pn_dims d, int x, int y, uint v) { if (x < d.width) plane[pn_index(d, x, y)] = v; }
 PN_FN void pn_ustore_stream(global uint* plane, pn_dims d, int x, int y, uint v) { pn_ustore(plane, d, x, y, v); }
 PN_FN uint pn_ugather(global const uint* ptr, int index) { return ptr[index]; }
+/* One 8-byte load (vload2 needs only the element's alignment). */
+PN_FN void pn_ugather_pair(global const uint* ptr, int index, uint* first, uint* second)
+{
+    const uint2 pair = vload2(0, ptr + index);
+    *first = pair.x;
+    *second = pair.y;
+}
+
+PN_FN void pn_ustore_pair_stream(global uint* plane, pn_dims d, int x, int y, uint first, uint second)
+{
+    if (x >= d.width) return;
+    plane[2 * pn_index(d, x, y)] = first;
+    plane[2 * pn_index(d, x, y) + 1] = second;
+}
+PN_FN void pn_uload_pair(global const uint* plane, pn_dims d, int x, int y, uint* first, uint* second)
+{
+    *first = x < d.width ? plane[2 * pn_index(d, x, y)] : 0u;
+    *second = x < d.width ? plane[2 * pn_index(d, x, y) + 1] : 0u;
+}
 
 /* Many work-items may raise the same flag; all write the same value, 1. */
 PN_FN void pn_flag_any(global int* flags, int i, int m) { if (m) flags[i] = 1; }

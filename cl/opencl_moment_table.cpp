@@ -19,6 +19,10 @@ void OpenClBackend::build_moment_table(const Image& depth, MomentTable& table, i
         p.depth = detail::dims_of(depth);
         p.table = detail::dims_of(table);
         p.moments = table.moments();
+        p.limbs = table.limbs();
+        p.encoding = table.values().kind;
+        p.exponent_positive = table.values().positive;
+        p.exponent_negative = table.values().negative;
         p.band_height = kBandHeight;
         p.columns = {depth.width(), bands, padded_pitch(depth.width()), padded_pitch(depth.width()) * bands};
 
@@ -26,8 +30,8 @@ void OpenClBackend::build_moment_table(const Image& depth, MomentTable& table, i
         cl::Buffer depth_buf = wrap(ctx, depth.plane(0), image_bytes(depth), CL_MEM_READ_ONLY);
         cl::Buffer storage = wrap(ctx, table.storage(), table_bytes, CL_MEM_READ_WRITE);
         cl::Buffer origin = table_origin(storage, table, CL_MEM_READ_WRITE);
-        cl::Buffer carry = zeros(ctx, std::size_t(depth.height()) * p.moments * 4);
-        cl::Buffer columns = zeros(ctx, std::size_t(p.columns.plane_pitch) * p.moments * 4);
+        cl::Buffer carry = zeros(ctx, std::size_t(depth.height()) * table.planes() * 4);
+        cl::Buffer columns = zeros(ctx, std::size_t(p.columns.plane_pitch) * table.planes() * 4);
         const std::size_t flag_bytes = std::size_t(depth.height()) * sizeof(int);
         cl::Buffer flags = wrap(ctx, bad_rows, flag_bytes, CL_MEM_READ_WRITE);
 

@@ -16,6 +16,7 @@ SatParams join_params(const EncodedSatParams& p)
     s.table = p.table;
     s.columns = p.columns;
     s.moments = p.channels;
+    s.limbs = 1;
     s.band_height = p.band_height;
     return s;
 }

@@ -302,6 +302,13 @@ Runtime::Runtime(DeviceChoice choice, ProgramCache cache) : cache_(std::move(cac
     const FoundDevice& chosen = choose(discovery, choice);
     device_ = chosen.device;
     info_ = chosen.info;
+    // The moment kernels form per-window moments in double (kernels/dialect.h):
+    // a device without fp64 would fail to build them, so refuse it here, by name.
+    const std::string extensions = translate_cl_errors([&] { return device_.getInfo<CL_DEVICE_EXTENSIONS>(); });
+    if (extensions.find("cl_khr_fp64") == std::string::npos)
+        throw Error(ErrorCategory::Backend, "opencl",
+                    "device '" + info_.device_name + "' has no double precision (cl_khr_fp64), which the moment "
+                    "kernels need; choose another device or --backend simd");
     translate_cl_errors([&] {
         context_ = cl::Context(device_);
         queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE);

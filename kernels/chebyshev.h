@@ -9,13 +9,18 @@
  * remapping p_max with linstep(bleed, 1, p) (Lauritzen, GPU Gems 3 ch. 8).
  * Output in [0, 1]; a window of one depth (zero variance) gives 1 in front of
  * it and ~0 behind it, never NaN (the denominator is >= min_variance > 0).
+ * Arithmetic: the window's moments arrive in double (from an exact limb
+ * table, kernels/moment_table.h) and the bound is evaluated in double; only
+ * the visibility is rounded to float. The variance E[z^2] - E[z]^2 cancels by
+ * up to 1 / min_variance (5e4 at the default), which double absorbs (error
+ * about 1e-16 / 2e-5 relative) and float could not (6e-8 x 5e4).
  */
 #ifndef PENUMBRA_CHEBYSHEV_H
 #define PENUMBRA_CHEBYSHEV_H
 
 typedef struct {
-    pn_float mean;     /* E[z]   */
-    pn_float mean_sq;  /* E[z^2] */
+    pn_double mean;     /* E[z]   */
+    pn_double mean_sq;  /* E[z^2] */
 } DepthMoments;
 
 typedef struct {
@@ -47,19 +52,22 @@ PN_FN Receiver load_checked_receiver(PN_GLOBAL const float* receivers, pn_dims d
     return r;
 }
 
-PN_FN pn_float chebyshev_upper_bound(DepthMoments m, pn_float z, float min_variance)
+PN_FN pn_double chebyshev_upper_bound(DepthMoments m, pn_double z, double min_variance)
 {
-    const pn_float variance = pn_max(m.mean_sq - m.mean * m.mean, min_variance);
-    const pn_float d = z - m.mean;
+    const pn_double variance = pn_dmax(m.mean_sq - m.mean * m.mean, min_variance);
+    const pn_double d = z - m.mean;
     /* With min_variance = 0 both terms can vanish (d * d underflows): the
      * floor keeps 0 / 0 out, giving 0, the right answer behind the window. */
-    const pn_float p_max = variance / pn_max(variance + d * d, 1e-30f);
-    return pn_select(z <= m.mean, 1.0f, p_max);
+    const pn_double p_max = variance / pn_dmax(variance + d * d, 1e-300);
+    return pn_dselect(z <= m.mean, 1.0, p_max);
 }
 
+/* The light-bleeding reduction pn_linstep(bleed, 1, p), in double. */
 PN_FN pn_float chebyshev_visibility(DepthMoments m, pn_float z, float min_variance, float bleed)
 {
-    return pn_linstep(bleed, 1.0f, chebyshev_upper_bound(m, z, min_variance));
+    const pn_double p = chebyshev_upper_bound(m, pn_to_double(z), min_variance);
+    const double lo = bleed;
+    return pn_double_to_float(pn_dclamp((p - lo) / (1.0 - lo), 0.0, 1.0));
 }
 
 /* Mean and mean square over the texels [x0, x1) x [y0, y1). */
@@ -68,18 +76,19 @@ PN_FN DepthMoments box_moments_float(PN_GLOBAL const float* table, pn_dims t, pn
 {
     const pn_float area = pn_int_to_float((x1 - x0) * (y1 - y0));
     DepthMoments m;
-    m.mean = sat_box_sum_float(PN_PLANE(table, t, 0), t, x0, x1, y0, y1) / area;
-    m.mean_sq = sat_box_sum_float(PN_PLANE(table, t, 1), t, x0, x1, y0, y1) / area;
+    m.mean = pn_to_double(sat_box_sum_float(PN_PLANE(table, t, 0), t, x0, x1, y0, y1) / area);
+    m.mean_sq = pn_to_double(sat_box_sum_float(PN_PLANE(table, t, 1), t, x0, x1, y0, y1) / area);
     return m;
 }
 
-PN_FN DepthMoments box_moments_exact(PN_GLOBAL const uint* table, pn_dims t, pn_int x0, pn_int x1, pn_int y0,
-                                     pn_int y1)
+/* The same from a limb table of z, z^2 (`limbs` limbs per value). */
+PN_FN DepthMoments box_moments_exact(PN_GLOBAL const uint* table, pn_dims t, int limbs, pn_int x0, pn_int x1,
+                                     pn_int y0, pn_int y1)
 {
-    const pn_float area = pn_int_to_float((x1 - x0) * (y1 - y0));
+    const pn_double area = pn_int_to_double((x1 - x0) * (y1 - y0));
     DepthMoments m;
-    m.mean = sat_box_sum_exact(PN_PLANE(table, t, 0), t, x0, x1, y0, y1) / area * sat_exact_moment_scale(1);
-    m.mean_sq = sat_box_sum_exact(PN_PLANE(table, t, 1), t, x0, x1, y0, y1) / area * sat_exact_moment_scale(2);
+    m.mean = sat_limb_box_sum(table, t, limbs, 0, 1.0 / 65536.0, x0, x1, y0, y1) / area;
+    m.mean_sq = sat_limb_box_sum(table, t, limbs, 1, 1.0 / 65536.0, x0, x1, y0, y1) / area;
     return m;
 }
 
@@ -99,23 +108,29 @@ PN_FN FractionalWindow clip_window(pn_dims t, pn_float cx, pn_float cy, pn_float
     return w;
 }
 
+/* A fractional window's area, in double (exact: differences of float32 corners). */
+PN_FN pn_double fractional_area(FractionalWindow f)
+{
+    return (pn_to_double(f.x1) - pn_to_double(f.x0)) * (pn_to_double(f.y1) - pn_to_double(f.y0));
+}
+
 PN_FN DepthMoments fractional_moments_float(PN_GLOBAL const float* table, pn_dims t, FractionalWindow f)
 {
     const SatFractionalWindow w = sat_fractional_window(t, f.x0, f.x1, f.y0, f.y1);
     const pn_float area = (f.x1 - f.x0) * (f.y1 - f.y0);
     DepthMoments m;
-    m.mean = sat_fractional_sum_float(PN_PLANE(table, t, 0), t, w) / area;
-    m.mean_sq = sat_fractional_sum_float(PN_PLANE(table, t, 1), t, w) / area;
+    m.mean = pn_to_double(sat_fractional_sum_float(PN_PLANE(table, t, 0), t, w) / area);
+    m.mean_sq = pn_to_double(sat_fractional_sum_float(PN_PLANE(table, t, 1), t, w) / area);
     return m;
 }
 
-PN_FN DepthMoments fractional_moments_exact(PN_GLOBAL const uint* table, pn_dims t, FractionalWindow f)
+PN_FN DepthMoments fractional_moments_exact(PN_GLOBAL const uint* table, pn_dims t, int limbs, FractionalWindow f)
 {
     const SatFractionalWindow w = sat_fractional_window(t, f.x0, f.x1, f.y0, f.y1);
-    const pn_float area = (f.x1 - f.x0) * (f.y1 - f.y0);
+    const pn_double area = fractional_area(f);
     DepthMoments m;
-    m.mean = sat_fractional_sum_exact(PN_PLANE(table, t, 0), t, w) / area * sat_exact_moment_scale(1);
-    m.mean_sq = sat_fractional_sum_exact(PN_PLANE(table, t, 1), t, w) / area * sat_exact_moment_scale(2);
+    m.mean = sat_limb_fractional_sum(table, t, limbs, 0, 1.0 / 65536.0, w) / area;
+    m.mean_sq = sat_limb_fractional_sum(table, t, limbs, 1, 1.0 / 65536.0, w) / area;
     return m;
 }
 

@@ -36,6 +36,20 @@
  *   arithmetic); pn_as_uint(f) and pn_as_float(u) reinterpret the 32 bits of
  *   a lane (OpenCL's as_uint / as_float), for exponent-field arithmetic.
  *
+ * Double lanes (per-window moments formed before any float32 step; docs/dialect.md)
+ *   pn_double, pn_dmask         per-pixel double and its condition; a pn_double
+ *                               covers the same pixels as a pn_float (on SIMD two
+ *                               halves of double batches: half the throughput)
+ *   + - * / and comparisons on pn_double (with pn_double or double operands);
+ *   pn_dmin pn_dmax pn_dclamp pn_dabs pn_dsqrt pn_dfloor pn_dexp pn_dselect;
+ *   pn_dand pn_dor pn_dnot pn_dany pn_dfinite on pn_dmask.
+ *   Conversions are explicit: pn_to_double(pn_float), pn_double_to_float (round
+ *   to nearest), pn_int_to_double and pn_uint_to_double (exact over the whole
+ *   range), pn_double_to_uint(d) (truncation, d in [0, 2^31)),
+ *   pn_dmask_to_mask and pn_mask_to_dmask. Double literals (1.0, not 1.0f) keep
+ *   arithmetic in double on every binding. OpenCL needs cl_khr_fp64: a device
+ *   without it is refused with an Error before any program is built.
+ *
  * Memory (images are planes described by a pn_dims, see kernels/params.h)
  *   PN_PLANE(ptr, dims, c)          pointer to plane c
  *   pn_load(plane, dims, x, y)      the strip of lanes starting at uniform (x, y);
@@ -61,6 +75,15 @@
  *   pn_gather(ptr, index)           per-lane element index; the caller guarantees
  *                                   it is in bounds (every lane, active or not)
  *   pn_uload pn_ustore pn_ustore_stream pn_ugather  the same for uint data
+ *   pn_ugather_pair(ptr, index, &first, &second)  ptr[index] and ptr[index + 1]
+ *                                   per lane (both in bounds): one 64-bit gather
+ *                                   element per lane on SIMD instead of two
+ *   pn_ustore_pair_stream(plane, dims, x, y, first, second)  two strips
+ *                                   interleaved: element 2 (y pitch + x + i) + 0 / + 1
+ *                                   get lane i of first / second (lanes past the
+ *                                   width not written); the limb tables' pair planes
+ *   pn_uload_pair(plane, dims, x, y, &first, &second)  its inverse (lanes past the
+ *                                   width read 0; not on a hot path)
  *
  * Input checks (a kernel validates the values it reads, so that checking
  * costs no extra pass over memory; the host reports the first bad value)

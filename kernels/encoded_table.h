@@ -120,29 +120,17 @@ PN_FN pn_float texel_window_area(TexelWindow w)
     return pn_int_to_float((w.x1 - w.x0) * (w.y1 - w.y0));
 }
 
-/* Mean of plane k over the texels of `w` (`area` texels). Exact tables hold
- * 16-bit steps: the mean of the values is sum / (65535 A). */
-PN_FN pn_float encoded_box_mean_float(PN_GLOBAL const float* table, pn_dims t, int k, TexelWindow w, pn_float area)
+/* Mean of plane k over the texels of `w` (`area` texels), float table. */
+PN_FN pn_double encoded_box_mean_float(PN_GLOBAL const float* table, pn_dims t, int k, TexelWindow w, pn_float area)
 {
-    return sat_box_sum_float(PN_PLANE(table, t, k), t, w.x0, w.x1, w.y0, w.y1) / area;
-}
-
-PN_FN pn_float encoded_box_mean_exact(PN_GLOBAL const uint* table, pn_dims t, int k, TexelWindow w, pn_float area)
-{
-    return sat_box_sum_exact(PN_PLANE(table, t, k), t, w.x0, w.x1, w.y0, w.y1) / area * (1.0f / PN_QUANTIZE_STEPS);
+    return pn_to_double(sat_box_sum_float(PN_PLANE(table, t, k), t, w.x0, w.x1, w.y0, w.y1) / area);
 }
 
 /* The same over a fractional window (kernels/moment_table.h) of `area` texels. */
-PN_FN pn_float encoded_fractional_mean_float(PN_GLOBAL const float* table, pn_dims t, int k, SatFractionalWindow w,
-                                             pn_float area)
+PN_FN pn_double encoded_fractional_mean_float(PN_GLOBAL const float* table, pn_dims t, int k, SatFractionalWindow w,
+                                              pn_float area)
 {
-    return sat_fractional_sum_float(PN_PLANE(table, t, k), t, w) / area;
-}
-
-PN_FN pn_float encoded_fractional_mean_exact(PN_GLOBAL const uint* table, pn_dims t, int k, SatFractionalWindow w,
-                                             pn_float area)
-{
-    return sat_fractional_sum_exact(PN_PLANE(table, t, k), t, w) / area * (1.0f / PN_QUANTIZE_STEPS);
+    return pn_to_double(sat_fractional_sum_float(PN_PLANE(table, t, k), t, w) / area);
 }
 
 #endif

@@ -18,32 +18,33 @@
 #define PENUMBRA_EVSM_H
 
 /* One warp: the window's (E[w], E[w^2]) against the receiver's warped depth
- * w_r, with the variance floored at min_variance times the warp's squared
- * slope at the receiver. The bound is invariant under scaling the variable,
- * so dividing w by the slope s = |dw/dz| at the receiver turns it into
- * depth units there, where the floor is min_variance itself: the kernel
- * reuses chebyshev_visibility (kernels/chebyshev.h) as it is, and the floor
- * never meets the cancellation in E[w^2] - E[w]^2. (1 / s^2 <= e^{2c} / c^2
- * stays within float range for c <= 42.) */
-PN_FN pn_float evsm_warp_visibility(pn_float mean, pn_float mean_sq, pn_float warped_receiver, pn_float slope,
+ * w_r, with the variance floor min_variance times the warp's squared slope
+ * at the receiver, all in double. The bound is invariant under scaling the
+ * variable, so dividing w by the slope s = |dw/dz| at the receiver turns it
+ * into depth units there, where the floor is min_variance itself: the kernel
+ * reuses chebyshev_visibility (kernels/chebyshev.h) as it is. */
+PN_FN pn_float evsm_warp_visibility(pn_double mean, pn_double mean_sq, pn_double warped_receiver, pn_double slope,
                                     const MomentParams p)
 {
-    const pn_float inverse = 1.0f / slope;
+    const pn_double inverse = 1.0 / slope;
     DepthMoments m;
     m.mean = mean * inverse;
     m.mean_sq = mean_sq * (inverse * inverse);
-    return chebyshev_visibility(m, warped_receiver * inverse, p.min_variance, p.bleed);
+    const pn_double bound = chebyshev_upper_bound(m, warped_receiver * inverse, p.min_variance);
+    const double lo = p.bleed;
+    return pn_double_to_float(pn_dclamp((bound - lo) / (1.0 - lo), 0.0, 1.0));
 }
 
 /* `mean` holds the window means of the table's channels. */
-PN_FN pn_float evsm_visibility(const pn_float* mean, pn_float receiver_z, const MomentParams p)
+PN_FN pn_float evsm_visibility(const pn_double* mean, pn_float receiver_z, const MomentParams p)
 {
-    const pn_float z = pn_clamp(receiver_z - p.depth_bias, 0.0f, 1.0f);
-    const pn_float wp = evsm_positive_warp(z, p.exponent_positive);
-    pn_float visibility = evsm_warp_visibility(mean[0], mean[1], wp, p.exponent_positive * wp, p);
+    const pn_double z = pn_dclamp(pn_to_double(receiver_z) - (double)p.depth_bias, 0.0, 1.0);
+    const double c_positive = p.exponent_positive, c_negative = p.exponent_negative;
+    const pn_double wp = pn_dexp(c_positive * (z - 1.0));
+    pn_float visibility = evsm_warp_visibility(mean[0], mean[1], wp, c_positive * wp, p);
     if (p.channels == 4) {
-        const pn_float wn = evsm_negative_magnitude(z, p.exponent_negative);
-        const pn_float negative = evsm_warp_visibility(-mean[2], mean[3], -wn, p.exponent_negative * wn, p);
+        const pn_double wn = pn_dexp(-c_negative * z);
+        const pn_float negative = evsm_warp_visibility(-mean[2], mean[3], -wn, c_negative * wn, p);
         visibility = pn_min(visibility, negative);
     }
     return visibility;
@@ -56,20 +57,23 @@ PN_KERNEL void evsm_float(PN_GLOBAL const float* table, PN_GLOBAL const float* r
     const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
     const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);
     const pn_float area = texel_window_area(w);
-    pn_float mean[4];
+    pn_double mean[4];
     for (int k = 0; k < p.channels; ++k) mean[k] = encoded_box_mean_float(table, p.table, k, w, area);
     pn_store(out, p.out, pn_x, pn_y, evsm_visibility(mean, r.z, p));
 }
 
+/* Exact: a limb table of the warps (kernels/moment_table.h, PN_TABLE_EVSM), or
+ * the 16-bit steps of an encoded table (one limb). */
 PN_KERNEL void evsm_exact(PN_GLOBAL const uint* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
                           PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
     const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
     const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);
-    const pn_float area = texel_window_area(w);
-    pn_float mean[4];
-    for (int k = 0; k < p.channels; ++k) mean[k] = encoded_box_mean_exact(table, p.table, k, w, area);
+    const pn_double area = pn_int_to_double((w.x1 - w.x0) * (w.y1 - w.y0));
+    pn_double mean[4];
+    for (int k = 0; k < p.channels; ++k)
+        mean[k] = sat_limb_box_sum(table, p.table, p.limbs, k, sat_limb_unit(p.limbs), w.x0, w.x1, w.y0, w.y1) / area;
     pn_store(out, p.out, pn_x, pn_y, evsm_visibility(mean, r.z, p));
 }
 

@@ -26,7 +26,7 @@
 
 /* The means of z, z^2, z^3, z^4 over a window (or one texel). */
 typedef struct {
-    pn_float b1, b2, b3, b4;
+    pn_double b1, b2, b3, b4;
 } FourMoments;
 
 /* o = T m + (offset, 0, 0, 0), m = (z, z^2, z^3, z^4). Evaluated as it is
@@ -56,15 +56,16 @@ PN_FN pn_float msm_quantize_step(pn_float v)
     return pn_floor(v * PN_QUANTIZE_STEPS + 0.5f) * (1.0f / PN_QUANTIZE_STEPS);
 }
 
-/* m = T^-1 (o - (offset, 0, 0, 0)), rows of T^-1 as in the paper. */
-PN_FN FourMoments msm_decode_optimized(pn_float o1, pn_float o2, pn_float o3, pn_float o4)
+/* m = T^-1 (o - (offset, 0, 0, 0)), rows of T^-1 as in the paper, in
+ * double (the means come in double; the matrix is taken as printed). */
+PN_FN FourMoments msm_decode_optimized(pn_double o1, pn_double o2, pn_double o3, pn_double o4)
 {
-    const pn_float u = o1 - PN_MSM_OFFSET;
+    const pn_double u = o1 - 0.035955884801;
     FourMoments m;
-    m.b1 = 0.2227744146f * u + 0.0771972861f * o2 + 0.7926986636f * o3 + 0.0319417555f * o4;
-    m.b2 = 0.1549679261f * u + 0.1394629426f * o2 + 0.7963415838f * o3 - 0.1722823173f * o4;
-    m.b3 = 0.1451988946f * u + 0.2120202157f * o2 + 0.7258694464f * o3 - 0.2758014811f * o4;
-    m.b4 = 0.163127443f * u + 0.2591432266f * o2 + 0.6539092497f * o3 - 0.3376131734f * o4;
+    m.b1 = 0.2227744146 * u + 0.0771972861 * o2 + 0.7926986636 * o3 + 0.0319417555 * o4;
+    m.b2 = 0.1549679261 * u + 0.1394629426 * o2 + 0.7963415838 * o3 - 0.1722823173 * o4;
+    m.b3 = 0.1451988946 * u + 0.2120202157 * o2 + 0.7258694464 * o3 - 0.2758014811 * o4;
+    m.b4 = 0.163127443 * u + 0.2591432266 * o2 + 0.6539092497 * o3 - 0.3376131734 * o4;
     return m;
 }
 

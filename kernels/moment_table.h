@@ -6,15 +6,27 @@
  * so that the sum of m_k over any rectangle costs four reads.
  *
  * Two precisions:
+ *  - exact (the default): "limb" tables. Each per-texel value v in [0, 1]
+ *    (z^k, or EVSM's warps, computed in double from the float32 depth) is
+ *    rounded to 16 L bits, v_q = round(v 2^(16L)) / 2^(16L) (error at most
+ *    2^-(16L+1): 1.2e-10 for L = 2, 1.8e-15 for L = 3), and split into L
+ *    16-bit limbs, most significant first; each limb is summed in wrapping
+ *    uint32 (value k, limb l: "plane" k L + l of the carries and columns).
+ *    Storage: limbs 0 and 1 of value k are interleaved in one pair plane
+ *    (PN_PLANE k L, two plane pitches: element 2 i + l for corner index i), so
+ *    that one 64-bit gather fetches both limbs of a corner and a fractional
+ *    window's corner pair (a, a + 1) is 16 contiguous bytes; limb 2 of a
+ *    3-limb table has the plane after (PN_PLANE k L + 2).
+ *    Limb 0 is at most 65536 (v = 1), the others at most 65535, so a wrapped
+ *    window difference of a limb plane is the exact limb sum while the
+ *    window holds A <= 65535 texels (255 x 255 = 65025 is the largest used),
+ *    on maps of any size. A window's mean of v is
+ *        E[v] = (sum_l S_l 2^(-16 (l + 1))) / A,
+ *    formed in double: for L = 2 the bracket is an exact integer multiple of
+ *    2^-32 below 2^17 (exact in double); for L = 3 it rounds once, at 2^-53
+ *    relative. docs/moment_table.md has the error analysis.
  *  - float: m_k = z^k in float. Fast; its error grows with the table's
  *    magnitude (docs/moment_table.md gives the measured worst case).
- *  - exact: depth quantized to q = round(z * 65535) and the moments to
- *    m_1 = q, m_{k+1} = round(m_k * q / 65536) (integer, so every backend agrees
- *    bit for bit), summed in uint32 that wrap modulo 2^32. Every m_k <= 65535,
- *    so the sum over a window of A texels is < 2^32 and therefore exact,
- *    whatever the wrapped table values are, while A <= 65537: windows up to
- *    255 x 255 texels (radius 127). The host rejects larger windows.
- *    Decoding: E[z] = S_1 / (65535 A); E[z^{k+1}] = E-sum of m_{k+1} * 65536^k / 65535^(k+1) / A.
  *
  * Layout: see SatParams in kernels/params.h (row y at table + (y + 1) * pitch,
  * a zero row before it and a zero padding column after every row). Boundary:
@@ -30,8 +42,8 @@
 #ifndef PENUMBRA_MOMENT_TABLE_H
 #define PENUMBRA_MOMENT_TABLE_H
 
-#define PN_EXACT_STEPS 65535.0f /* quantization steps of depth in exact tables */
-#define PN_EXACT_MAX_AREA 65537  /* texels: the largest window whose sums stay exact */
+#define PN_EXACT_MAX_AREA 65535  /* texels: the largest window whose limb sums stay exact */
+#define PN_MAX_PLANES 12         /* 4 values x 3 limbs */
 
 /* ---- build ------------------------------------------------------------- */
 
@@ -86,52 +98,95 @@ PN_FN void sat_block_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
         sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, 4, x0, x1, y0, y1);
 }
 
-/* Exact moments of one strip: m_1 = q = round(z * 65535), m_{k+1} =
- * round(m_k * q / 65536). m_k * q <= 65535^2 < 2^32 - 2^15, so no step wraps. */
-PN_FN pn_uint sat_exact_next_moment(pn_uint m, pn_uint q)
+/* The values of one strip (double, from the float32 depth clamped into
+ * [0, 1]): z, z^2 (, z^3, z^4), or EVSM's warps w+ = e^{c+ (z - 1)}, w+^2
+ * (, |w-| = e^{-c- z}, w-^2) (kernels/exponential_warp.h). */
+PN_FN void sat_texel_values(pn_float z, const SatParams p, int moments, pn_double* v)
 {
-    return pn_ushr(m * q + (pn_uint)32768u, 16);
+    const pn_double d = pn_to_double(pn_clamp(z, 0.0f, 1.0f));
+    if (p.encoding == PN_TABLE_EVSM) {
+        v[0] = pn_dexp((double)p.exponent_positive * (d - 1.0));
+        v[1] = v[0] * v[0];
+        if (moments == 4) {
+            v[2] = pn_dexp(-(double)p.exponent_negative * d);
+            v[3] = v[2] * v[2];
+        }
+        return;
+    }
+    v[0] = d;
+    for (int k = 1; k < moments; ++k) v[k] = v[k - 1] * d;
+}
+
+/* The `limbs` 16-bit limbs of v in [0, 1] rounded to 16 limbs bits, most
+ * significant first. Adding half a step rounds to nearest; each step then
+ * takes the next 16 bits (multiplying by 2^16 and removing the integer part
+ * are exact in double). */
+PN_FN void sat_limbs(pn_double v, int limbs, pn_uint* out)
+{
+    double half_step = 0.5;
+    for (int l = 0; l < limbs; ++l) half_step = half_step * (1.0 / 65536.0);
+    pn_double rest = v + half_step;
+    for (int l = 0; l < limbs; ++l) {
+        rest = rest * 65536.0;
+        const pn_double limb = pn_dfloor(rest);
+        out[l] = pn_double_to_uint(limb);
+        rest = rest - limb;
+    }
 }
 
 PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                           PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
-                          PN_GLOBAL int* bad_rows, const SatParams p, int moments, int x0, int x1, int y0, int y1)
+                          PN_GLOBAL int* bad_rows, const SatParams p, int moments, int limbs, int x0, int x1,
+                          int y0, int y1)
 {
+    const int planes = moments * limbs;
     for (int y = y0; y < y1; ++y) {
-        pn_uint row_sum[4];
-        for (int k = 0; k < moments; ++k) row_sum[k] = carry[k * p.depth.height + y];
+        pn_uint row_sum[PN_MAX_PLANES];
+        for (int k = 0; k < planes; ++k) row_sum[k] = carry[k * p.depth.height + y];
         pn_mask bad = sat_depth_outside(0.0f);
         PN_FOR_STRIPS(x, x0, x1)
         {
             const pn_float z = pn_load(depth, p.depth, x, y);
             bad = pn_or(bad, sat_depth_outside(z));
-            const pn_uint q = pn_float_to_uint(pn_floor(z * PN_EXACT_STEPS + 0.5f));
-            pn_uint m = q;
-            for (int k = 0; k < moments; ++k) {
+            pn_double v[4];
+            sat_texel_values(z, p, moments, v);
+            pn_uint q[PN_MAX_PLANES];
+            for (int k = 0; k < moments; ++k) sat_limbs(v[k], limbs, q + k * limbs);
+            pn_uint sum[PN_MAX_PLANES];
+            for (int k = 0; k < planes; ++k) {
                 PN_GLOBAL uint* column = PN_PLANE(columns, p.columns, k);
-                const pn_uint row_prefix = pn_uscan_add(m) + row_sum[k];
-                const pn_uint sum = pn_uload(column, p.columns, x, column_row) + row_prefix;
-                pn_ustore(column, p.columns, x, column_row, sum);
-                pn_ustore_stream(PN_PLANE(table, p.table, k), p.table, x, y + 1, sum);
+                const pn_uint row_prefix = pn_uscan_add(q[k]) + row_sum[k];
+                sum[k] = pn_uload(column, p.columns, x, column_row) + row_prefix;
+                pn_ustore(column, p.columns, x, column_row, sum[k]);
                 row_sum[k] = pn_ulast(row_prefix);
-                m = sat_exact_next_moment(m, q);
+            }
+            for (int k = 0; k < moments; ++k) {
+                pn_ustore_pair_stream(PN_PLANE(table, p.table, k * limbs), p.table, x, y + 1, sum[k * limbs],
+                                      sum[k * limbs + 1]);
+                if (limbs == 3)
+                    pn_ustore_stream(PN_PLANE(table, p.table, k * limbs + 2), p.table, x, y + 1, sum[k * limbs + 2]);
             }
         }
-        for (int k = 0; k < moments; ++k) carry[k * p.depth.height + y] = pn_ulast_value(row_sum[k]);
+        for (int k = 0; k < planes; ++k) carry[k * p.depth.height + y] = pn_ulast_value(row_sum[k]);
         pn_flag_any(bad_rows, y, bad);
     }
 }
 
-/* The moment count as a literal lets the compiler unroll the per-moment loop
- * and keep the row sums in registers (measured: docs/moment_table.md). */
+/* The value and limb counts as literals let the compiler unroll the
+ * per-plane loops and keep the row sums in registers (measured:
+ * docs/moment_table.md). */
 PN_FN void sat_block_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                            PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
                            PN_GLOBAL int* bad_rows, const SatParams p, int x0, int x1, int y0, int y1)
 {
-    if (p.moments == 2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, x0, x1, y0, y1);
+    if (p.moments == 2 && p.limbs == 2)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, x0, x1, y0, y1);
+    else if (p.moments == 4 && p.limbs == 2)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 2, x0, x1, y0, y1);
+    else if (p.moments == 2)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 3, x0, x1, y0, y1);
     else
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, x0, x1, y0, y1);
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 3, x0, x1, y0, y1);
 }
 
 /* Banded schedule, pass 1: band `pn_task` of `band_height` rows becomes a
@@ -164,7 +219,7 @@ PN_KERNEL void sat_join_bands_float(PN_GLOBAL float* table, PN_GLOBAL const floa
     PN_PIXEL_BEGIN(p.depth.width, p.depth.height);
     const int band = pn_y / p.band_height;
     if (band == 0) return;
-    for (int k = 0; k < p.moments; ++k) {
+    for (int k = 0; k < p.moments * p.limbs; ++k) {
         PN_GLOBAL const float* column = PN_PLANE(columns, p.columns, k);
         pn_float above = 0.0f;
         for (int b = 0; b < band; ++b) above = above + pn_load(column, p.columns, pn_x, b);
@@ -179,12 +234,29 @@ PN_KERNEL void sat_join_bands_exact(PN_GLOBAL uint* table, PN_GLOBAL const uint*
     PN_PIXEL_BEGIN(p.depth.width, p.depth.height);
     const int band = pn_y / p.band_height;
     if (band == 0) return;
-    for (int k = 0; k < p.moments; ++k) {
+    pn_uint above[PN_MAX_PLANES];
+    for (int k = 0; k < p.moments * p.limbs; ++k) {
         PN_GLOBAL const uint* column = PN_PLANE(columns, p.columns, k);
-        pn_uint above = 0u;
-        for (int b = 0; b < band; ++b) above = above + pn_uload(column, p.columns, pn_x, b);
-        PN_GLOBAL uint* plane = PN_PLANE(table, p.table, k);
-        pn_ustore(plane, p.table, pn_x, pn_y + 1, pn_uload(plane, p.table, pn_x, pn_y + 1) + above);
+        above[k] = 0u;
+        for (int b = 0; b < band; ++b) above[k] = above[k] + pn_uload(column, p.columns, pn_x, b);
+    }
+    for (int k = 0; k < p.moments; ++k) {
+        if (p.limbs == 1) {
+            PN_GLOBAL uint* plane = PN_PLANE(table, p.table, k);
+            pn_ustore(plane, p.table, pn_x, pn_y + 1, pn_uload(plane, p.table, pn_x, pn_y + 1) + above[k]);
+            continue;
+        }
+        /* The limb tables' layout (top of this file): a pair plane, then limb 2. */
+        PN_GLOBAL uint* pair = PN_PLANE(table, p.table, k * p.limbs);
+        pn_uint first, second;
+        pn_uload_pair(pair, p.table, pn_x, pn_y + 1, &first, &second);
+        pn_ustore_pair_stream(pair, p.table, pn_x, pn_y + 1, first + above[k * p.limbs],
+                              second + above[k * p.limbs + 1]);
+        if (p.limbs == 3) {
+            PN_GLOBAL uint* plane = PN_PLANE(table, p.table, k * p.limbs + 2);
+            pn_ustore(plane, p.table, pn_x, pn_y + 1,
+                      pn_uload(plane, p.table, pn_x, pn_y + 1) + above[k * p.limbs + 2]);
+        }
     }
 }
 
@@ -208,24 +280,59 @@ PN_FN pn_float sat_box_sum_float(PN_GLOBAL const float* plane, pn_dims t, pn_int
     return (s11 - s01) - (s10 - s00);
 }
 
-/* The same over an exact table: the wrapped differences are the exact sum. */
-PN_FN pn_float sat_box_sum_exact(PN_GLOBAL const uint* plane, pn_dims t, pn_int x0, pn_int x1, pn_int y0,
-                                 pn_int y1)
+/* The same over a uint table: the wrapped difference, exact while the true
+ * sum is below 2^32. */
+PN_FN pn_uint sat_box_sum_wrapped(PN_GLOBAL const uint* plane, pn_dims t, pn_int x0, pn_int x1, pn_int y0,
+                                  pn_int y1)
 {
     const pn_uint s00 = pn_ugather(plane, sat_corner_index(t, x0, y0));
     const pn_uint s10 = pn_ugather(plane, sat_corner_index(t, x1, y0));
     const pn_uint s01 = pn_ugather(plane, sat_corner_index(t, x0, y1));
     const pn_uint s11 = pn_ugather(plane, sat_corner_index(t, x1, y1));
-    return pn_uint_to_float((s11 - s01) - (s10 - s00));
+    return (s11 - s01) - (s10 - s00);
 }
 
-/* Scale that turns an exact table's sum of m_k into a sum of z^k:
- * m_1 = 65535 z, and each further moment carries another factor 65535/65536. */
-PN_FN float sat_exact_moment_scale(int k)
+/* The same over a pair plane: both limbs of the four corners, one 64-bit
+ * gather element per corner and lane. */
+PN_FN void sat_box_sum_pair(PN_GLOBAL const uint* pair, pn_dims t, pn_int x0, pn_int x1, pn_int y0, pn_int y1,
+                            pn_uint* first, pn_uint* second)
 {
-    float scale = 1.0f / PN_EXACT_STEPS;
-    for (int i = 1; i < k; ++i) scale = scale * (65536.0f / PN_EXACT_STEPS);
-    return scale;
+    pn_uint a0, a1, b0, b1, c0, c1, d0, d1;
+    pn_ugather_pair(pair, sat_corner_index(t, x0, y0) * 2, &a0, &a1);
+    pn_ugather_pair(pair, sat_corner_index(t, x1, y0) * 2, &b0, &b1);
+    pn_ugather_pair(pair, sat_corner_index(t, x0, y1) * 2, &c0, &c1);
+    pn_ugather_pair(pair, sat_corner_index(t, x1, y1) * 2, &d0, &d1);
+    *first = (d0 - c0) - (b0 - a0);
+    *second = (d1 - c1) - (b1 - a1);
+}
+
+/* The value of one step of limb 0: 2^-16 in limb tables; a table of one
+ * limb per value holds 16-bit steps v * 65535 instead (kernels/encoded_table.h,
+ * the opt-in 16-bit storages). */
+PN_FN double sat_limb_unit(int limbs)
+{
+    return limbs == 1 ? 1.0 / 65535.0 : 1.0 / 65536.0;
+}
+
+/* Sum of value k of a limb table over the texels [x0, x1) x [y0, y1), in units
+ * of `unit` per step of limb 0 (2^-16 for limb tables, each further limb
+ * 2^-16 of the one before): sum_l S_l unit 2^(-16 l). */
+PN_FN pn_double sat_limb_box_sum(PN_GLOBAL const uint* table, pn_dims t, int limbs, int k, double unit, pn_int x0,
+                                 pn_int x1, pn_int y0, pn_int y1)
+{
+    pn_uint s[3];
+    if (limbs == 1) {
+        s[0] = sat_box_sum_wrapped(PN_PLANE(table, t, k), t, x0, x1, y0, y1);
+    } else {
+        sat_box_sum_pair(PN_PLANE(table, t, k * limbs), t, x0, x1, y0, y1, &s[0], &s[1]);
+        if (limbs == 3) s[2] = sat_box_sum_wrapped(PN_PLANE(table, t, k * limbs + 2), t, x0, x1, y0, y1);
+    }
+    pn_double total = 0.0;
+    for (int l = 0; l < limbs; ++l) {
+        total = total + pn_uint_to_double(s[l]) * unit;
+        unit = unit * (1.0 / 65536.0);
+    }
+    return total;
 }
 
 /* A window with fractional edges, in exclusive-corner coordinates clipped to
@@ -282,19 +389,66 @@ PN_FN pn_float sat_fractional_sum_float(PN_GLOBAL const float* plane, pn_dims t,
     return total;
 }
 
-PN_FN pn_float sat_fractional_sum_exact(PN_GLOBAL const uint* plane, pn_dims t, SatFractionalWindow w)
+/* The 4 x 4 corner values s[row][column] of a fractional window, of one uint
+ * plane. Corners a and a + 1 of a row are adjacent elements: one pair gather
+ * each. The pair reads a + 1 unclamped: at a1 = width that is the row's zero
+ * padding (pitch > width), under the right sliver's weight t1 - a1 = 0. */
+PN_FN void sat_fractional_corners(PN_GLOBAL const uint* plane, pn_dims t, SatFractionalWindow w, pn_uint s[4][4])
 {
-    pn_uint s[4][4];
+    for (int j = 0; j < 4; ++j) {
+        pn_ugather_pair(plane, sat_corner_index(t, w.x[0], w.y[j]), &s[j][0], &s[j][1]);
+        pn_ugather_pair(plane, sat_corner_index(t, w.x[2], w.y[j]), &s[j][2], &s[j][3]);
+    }
+}
+
+/* The same for both limbs of a pair plane: the corner pair (a, a + 1) is
+ * 16 contiguous bytes (two pair gathers), limb 0 into s0, limb 1 into s1. */
+PN_FN void sat_fractional_corners_pair(PN_GLOBAL const uint* pair, pn_dims t, SatFractionalWindow w,
+                                       pn_uint s0[4][4], pn_uint s1[4][4])
+{
     for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) s[j][i] = pn_ugather(plane, sat_corner_index(t, w.x[i], w.y[j]));
-    pn_float total = 0.0f;
-    for (int j = 0; j < 3; ++j)
+        for (int c = 0; c < 4; c += 2) {
+            const pn_int i = sat_corner_index(t, w.x[c], w.y[j]) * 2;
+            pn_ugather_pair(pair, i, &s0[j][c], &s1[j][c]);
+            pn_ugather_pair(pair, i + 2, &s0[j][c + 1], &s1[j][c + 1]);
+        }
+}
+
+/* One plane's corner values weighted over a fractional window, in double:
+ * every integer rectangle is exact, the weights are exact in double
+ * (differences of float32 corners), the weighted sum rounds at 2^-53 relative. */
+PN_FN pn_double sat_fractional_weighted(pn_uint s[4][4], SatFractionalWindow w)
+{
+    pn_double total = 0.0;
+    for (int j = 0; j < 3; ++j) {
+        const int yl = sat_interval_lo(j), yh = sat_interval_hi(j);
+        pn_double row = 0.0;
         for (int i = 0; i < 3; ++i) {
             const int xl = sat_interval_lo(i), xh = sat_interval_hi(i);
-            const int yl = sat_interval_lo(j), yh = sat_interval_hi(j);
             const pn_uint rect = (s[yh][xh] - s[yh][xl]) - (s[yl][xh] - s[yl][xl]);
-            total = total + w.wx[i] * w.wy[j] * pn_uint_to_float(rect);
+            row = row + pn_to_double(w.wx[i]) * pn_uint_to_double(rect);
         }
+        total = total + pn_to_double(w.wy[j]) * row;
+    }
+    return total;
+}
+
+/* Value k of a limb table over a fractional window (sat_limb_box_sum's units). */
+PN_FN pn_double sat_limb_fractional_sum(PN_GLOBAL const uint* table, pn_dims t, int limbs, int k, double unit,
+                                        SatFractionalWindow w)
+{
+    pn_uint s[3][4][4];
+    if (limbs == 1) {
+        sat_fractional_corners(PN_PLANE(table, t, k), t, w, s[0]);
+    } else {
+        sat_fractional_corners_pair(PN_PLANE(table, t, k * limbs), t, w, s[0], s[1]);
+        if (limbs == 3) sat_fractional_corners(PN_PLANE(table, t, k * limbs + 2), t, w, s[2]);
+    }
+    pn_double total = 0.0;
+    for (int l = 0; l < limbs; ++l) {
+        total = total + sat_fractional_weighted(s[l], w) * unit;
+        unit = unit * (1.0 / 65536.0);
+    }
     return total;
 }
 

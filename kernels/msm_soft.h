@@ -29,45 +29,45 @@
 #define PN_MSM_NO_BLOCKER 1e-4f /* blocker weight (beyond the bias's) below this: lit */
 
 typedef struct {
-    pn_float weight; /* the blockers' share of the window */
-    pn_float depth;  /* their weighted average depth */
+    pn_double weight; /* the blockers' share of the window */
+    pn_double depth;  /* their weighted average depth */
 } Blockers;
 
-PN_FN Blockers msm_blockers_definite(FourMoments b, HankelFactors h, pn_mask definite, pn_float z)
+PN_FN Blockers msm_blockers_definite(FourMoments b, HankelFactors h, pn_dmask definite, pn_double z)
 {
     const KernelPolynomial c = msm_solve(b, h, definite, z);
     const Roots r = msm_roots(c);
-    const pn_float weight_z = pn_clamp(1.0f / msm_safe(msm_polynomial_at(c, z)), 0.0f, 1.0f);
-    const pn_float rest = 1.0f - weight_z;
-    const pn_float rest_depth = (b.b1 - weight_z * z) / pn_max(rest, 1e-30f);
-    const pn_float lower = (z * r.hi - b.b1 * (z + r.hi) + b.b2) / msm_safe((r.hi - r.lo) * (z - r.lo));
+    const pn_double weight_z = pn_dclamp(1.0 / msm_safe(msm_polynomial_at(c, z)), 0.0, 1.0);
+    const pn_double rest = 1.0 - weight_z;
+    const pn_double rest_depth = (b.b1 - weight_z * z) / pn_dmax(rest, 1e-300);
+    const pn_double lower = (z * r.hi - b.b1 * (z + r.hi) + b.b2) / msm_safe((r.hi - r.lo) * (z - r.lo));
     /* A root at infinity carries no weight: the other root holds all but w(z). */
-    const pn_mask one_root = pn_and(pn_finite(r.lo), pn_not(pn_finite(r.hi)));
+    const pn_dmask one_root = pn_dand(pn_dfinite(r.lo), pn_dnot(pn_dfinite(r.hi)));
     Blockers k;
-    k.weight = pn_select(z <= r.lo, 0.0f, pn_select(pn_or(z > r.hi, one_root), rest, lower));
-    k.depth = pn_select(pn_or(z > r.hi, one_root), rest_depth, r.lo);
-    k.weight = pn_select(pn_and(pn_finite(k.weight), pn_finite(k.depth)), k.weight, 0.0f);
+    k.weight = pn_dselect(z <= r.lo, 0.0, pn_dselect(pn_dor(z > r.hi, one_root), rest, lower));
+    k.depth = pn_dselect(pn_dor(z > r.hi, one_root), rest_depth, r.lo);
+    k.weight = pn_dselect(pn_dand(pn_dfinite(k.weight), pn_dfinite(k.depth)), k.weight, 0.0);
     return k;
 }
 
 /* Where the window is one depth or two (kernels/msm.h's rule), the blockers
  * are those depths in front of z; the bias atoms are not blockers. */
-PN_FN Blockers msm_blockers(FourMoments raw, pn_float z, MsmPrecision precision)
+PN_FN Blockers msm_blockers(FourMoments raw, pn_double z, MsmPrecision precision)
 {
-    const pn_mask one_point = raw.b2 - raw.b1 * raw.b1 <= precision.noise;
+    const pn_dmask one_point = raw.b2 - raw.b1 * raw.b1 <= precision.floor;
     const FourMoments b = msm_bias(raw, precision.alpha);
     const HankelFactors h = msm_factor(b);
-    const pn_mask definite = pn_and(msm_positive_definite(b, h, precision.noise), pn_not(one_point));
+    const pn_dmask definite = msm_positive_definite(b, h, precision.floor);
     Blockers k = msm_blockers_definite(b, h, definite, z);
     const TwoPoints t = msm_two_points(raw, msm_factor(raw));
-    const pn_mask two_point = pn_and(pn_not(pn_or(definite, one_point)), msm_two_points_valid(t));
-    const pn_float two_weight = pn_select(z <= t.x1, 0.0f, pn_select(z <= t.x2, 1.0f - t.upper_weight, 1.0f));
-    const pn_float two_depth = pn_select(z <= t.x2, t.x1, raw.b1);
-    const pn_mask point = pn_not(pn_or(definite, two_point));
-    k.weight = pn_select(two_point, two_weight, pn_select(point, pn_select(raw.b1 < z, 1.0f, 0.0f), k.weight));
-    k.depth = pn_select(two_point, two_depth, pn_select(point, raw.b1, k.depth));
-    k.weight = pn_clamp(k.weight, 0.0f, 1.0f);
-    k.depth = pn_clamp(k.depth, 0.0f, pn_max(z, 0.0f));
+    const pn_dmask two_point = pn_dand(pn_dnot(pn_dor(definite, one_point)), msm_two_points_valid(t));
+    const pn_double two_weight = pn_dselect(z <= t.x1, 0.0, pn_dselect(z <= t.x2, 1.0 - t.upper_weight, 1.0));
+    const pn_double two_depth = pn_dselect(z <= t.x2, t.x1, raw.b1);
+    const pn_dmask point = pn_dnot(pn_dor(definite, two_point));
+    k.weight = pn_dselect(two_point, two_weight, pn_dselect(point, pn_dselect(raw.b1 < z, 1.0, 0.0), k.weight));
+    k.depth = pn_dselect(two_point, two_depth, pn_dselect(point, raw.b1, k.depth));
+    k.weight = pn_dclamp(k.weight, 0.0, 1.0);
+    k.depth = pn_dclamp(k.depth, 0.0, pn_dmax(z, 0.0));
     return k;
 }
 
@@ -83,13 +83,8 @@ PN_FN ChebyshevParams msm_soft_geometry(const MomentParams p)
     c.min_variance = 0.0f;
     c.bleed = 0.0f;
     c.light_size = p.light_size;
-    c.exact_scale = 1.0f / PN_QUANTIZE_STEPS;
+    c.limbs = p.limbs;
     return c;
-}
-
-PN_FN pn_float msm_soft_area(FractionalWindow f)
-{
-    return (f.x1 - f.x0) * (f.y1 - f.y0);
 }
 
 /* A window's moments and what they can be trusted to. */
@@ -101,69 +96,78 @@ typedef struct {
 PN_FN WindowMoments msm_soft_moments_float(PN_GLOBAL const float* table, FractionalWindow f, const MomentParams p)
 {
     const SatFractionalWindow w = sat_fractional_window(p.table, f.x0, f.x1, f.y0, f.y1);
-    const pn_float area = msm_soft_area(f);
-    pn_float mean[4];
+    const pn_float area = (f.x1 - f.x0) * (f.y1 - f.y0);
+    pn_double mean[4];
     for (int k = 0; k < 4; ++k) mean[k] = encoded_fractional_mean_float(table, p.table, k, w, area);
     WindowMoments r;
     r.m = msm_moments_from_means(mean, p.storage);
-    r.precision = msm_float_precision(f.x1 + 1.0f, f.y1 + 1.0f, area, p);
+    r.precision = msm_float_precision(pn_to_double(f.x1 + 1.0f), pn_to_double(f.y1 + 1.0f), pn_to_double(area), p);
     return r;
 }
 
+/* An exact table's moments over a fractional window (units as msm_box_means_exact). */
 PN_FN WindowMoments msm_soft_moments_exact(PN_GLOBAL const uint* table, FractionalWindow f, const MomentParams p)
 {
     const SatFractionalWindow w = sat_fractional_window(p.table, f.x0, f.x1, f.y0, f.y1);
-    const pn_float area = msm_soft_area(f);
-    pn_float mean[4];
-    for (int k = 0; k < 4; ++k) mean[k] = encoded_fractional_mean_exact(table, p.table, k, w, area);
+    const pn_double area = fractional_area(f);
+    const double unit = sat_limb_unit(p.limbs);
+    pn_double mean[4];
+    for (int k = 0; k < 4; ++k) mean[k] = sat_limb_fractional_sum(table, p.table, p.limbs, k, unit, w) / area;
     WindowMoments r;
-    r.m = msm_moments_from_means(mean, PN_MOMENTS_OPTIMIZED16);
+    r.m = msm_moments_from_means(mean, p.storage);
     r.precision = msm_exact_precision(p);
     return r;
 }
 
 /* Steps 1-2 from the search window's moments: the filter window, and `lit`
- * for receivers with no blocker. */
-PN_FN FractionalWindow msm_soft_filter_window(WindowMoments search, Receiver r, const MomentParams p, pn_mask* lit)
+ * for receivers with no blocker. The blocker depth is rounded to float for
+ * the window geometry (as VSSM's). */
+PN_FN FractionalWindow msm_soft_filter_window(WindowMoments search, Receiver r, pn_double z_f, const MomentParams p,
+                                              pn_mask* lit)
 {
-    const Blockers k = msm_blockers(search.m, r.z, search.precision);
-    *lit = pn_or(k.weight < search.precision.alpha + PN_MSM_NO_BLOCKER, r.z <= 0.0f);
-    return vssm_filter_window(msm_soft_geometry(p), r, k.depth);
+    const Blockers k = msm_blockers(search.m, z_f, search.precision);
+    *lit = pn_or(pn_dmask_to_mask(k.weight < search.precision.alpha + PN_MSM_NO_BLOCKER), r.z <= 0.0f);
+    return vssm_filter_window(msm_soft_geometry(p), r, pn_double_to_float(k.depth));
 }
 
-/* The receiver with its depth biased: z_f. */
+/* The receiver with its depth biased (float, for the window geometry); the
+ * reconstruction takes z_f = z - depth_bias in double. */
 PN_FN Receiver msm_soft_receiver(Receiver r, const MomentParams p)
 {
     r.z = r.z - p.depth_bias;
     return r;
 }
 
+PN_FN pn_float msm_soft_visibility(WindowMoments filter_moments, pn_double z_f, pn_mask lit)
+{
+    const pn_float visibility = pn_double_to_float(1.0 - msm_intensity(filter_moments.m, z_f, filter_moments.precision));
+    return pn_select(lit, 1.0f, visibility);
+}
+
 PN_KERNEL void msm_soft_float(PN_GLOBAL const float* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
                               PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const Receiver r = msm_soft_receiver(load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows), p);
-    const ChebyshevParams geometry = msm_soft_geometry(p);
+    const Receiver raw = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
+    const pn_double z_f = pn_to_double(raw.z) - (double)p.depth_bias;
+    const Receiver r = msm_soft_receiver(raw, p);
     pn_mask lit;
-    const WindowMoments search = msm_soft_moments_float(table, vssm_search_window(geometry, r), p);
-    const FractionalWindow filter = msm_soft_filter_window(search, r, p, &lit);
-    const WindowMoments m = msm_soft_moments_float(table, filter, p);
-    const pn_float visibility = 1.0f - msm_intensity(m.m, r.z, m.precision);
-    pn_store(out, p.out, pn_x, pn_y, pn_select(lit, 1.0f, visibility));
+    const WindowMoments search = msm_soft_moments_float(table, vssm_search_window(msm_soft_geometry(p), r), p);
+    const FractionalWindow filter = msm_soft_filter_window(search, r, z_f, p, &lit);
+    pn_store(out, p.out, pn_x, pn_y, msm_soft_visibility(msm_soft_moments_float(table, filter, p), z_f, lit));
 }
 
 PN_KERNEL void msm_soft_exact(PN_GLOBAL const uint* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
                               PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const Receiver r = msm_soft_receiver(load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows), p);
-    const ChebyshevParams geometry = msm_soft_geometry(p);
+    const Receiver raw = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
+    const pn_double z_f = pn_to_double(raw.z) - (double)p.depth_bias;
+    const Receiver r = msm_soft_receiver(raw, p);
     pn_mask lit;
-    const WindowMoments search = msm_soft_moments_exact(table, vssm_search_window(geometry, r), p);
-    const FractionalWindow filter = msm_soft_filter_window(search, r, p, &lit);
-    const WindowMoments m = msm_soft_moments_exact(table, filter, p);
-    const pn_float visibility = 1.0f - msm_intensity(m.m, r.z, m.precision);
-    pn_store(out, p.out, pn_x, pn_y, pn_select(lit, 1.0f, visibility));
+    const WindowMoments search = msm_soft_moments_exact(table, vssm_search_window(msm_soft_geometry(p), r), p);
+    const FractionalWindow filter = msm_soft_filter_window(search, r, z_f, p, &lit);
+    pn_store(out, p.out, pn_x, pn_y, msm_soft_visibility(msm_soft_moments_exact(table, filter, p), z_f, lit));
 }
 
 #endif

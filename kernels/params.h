@@ -30,9 +30,16 @@ typedef struct {
     pn_dims depth;     /* the depth map: one plane, values in [0, 1] */
     pn_dims table;     /* `moments` planes of inclusive sums */
     pn_dims columns;   /* column accumulators: `moments` planes, one row per band */
-    int moments;       /* 2 (z, z^2) or 4 (z .. z^4) */
+    int moments;       /* values per texel: 2 (z, z^2; w+, w+^2) or 4 (z .. z^4; both warps) */
+    int limbs;         /* exact tables: 16-bit limbs per value (2 or 3); float tables: 1.
+                          The table has moments x limbs planes (kernels/moment_table.h) */
+    int encoding;      /* PN_TABLE_POWERS or PN_TABLE_EVSM */
     int band_height;   /* rows per band in the banded (OpenCL) schedule */
+    float exponent_positive; /* PN_TABLE_EVSM: c+ */
+    float exponent_negative; /* PN_TABLE_EVSM: c- */
 } SatParams;
+#define PN_TABLE_POWERS 0 /* values z^k */
+#define PN_TABLE_EVSM 1   /* values: EVSM's warps and their squares (kernels/exponential_warp.h) */
 
 /* Chebyshev lookups (kernels/chebyshev.h, vsm.h, vssm.h). */
 typedef struct {
@@ -44,7 +51,7 @@ typedef struct {
     float min_variance;     /* variance floor, in depth^2 */
     float bleed;            /* light-bleeding reduction in [0, 1) */
     float light_size;       /* vssm: light width in texture units at the near plane */
-    float exact_scale;      /* exact tables: 1 / 65535 (depth per quantization step) */
+    int limbs;              /* exact tables: 16-bit limbs per value (SatParams) */
 } ChebyshevParams;
 
 /* Cross-bilateral filter of a mask guided by depth (kernels/bilateral.h). The
@@ -106,7 +113,7 @@ typedef struct {
  * exponential_warp.h, encoded_table.h, evsm.h, msm.h, msm_soft.h). */
 #define PN_ENCODE_MSM 0           /* 4 channels: the optimized 16-bit moment encoding */
 #define PN_ENCODE_EVSM 1          /* 2 or 4 channels: the exponential warps */
-#define PN_MOMENTS_POWER 0        /* an MSM table of float sums of z, z^2, z^3, z^4 */
+#define PN_MOMENTS_POWER 0        /* an MSM table of sums of z, z^2, z^3, z^4 (limb or float) */
 #define PN_MOMENTS_OPTIMIZED16 1  /* an MSM table of sums of optimized 16-bit moments */
 typedef struct {
     pn_dims depth;           /* one plane: depths in [0, 1] */
@@ -126,10 +133,11 @@ typedef struct {
     pn_dims out;             /* one plane: visibility */
     int radius;              /* msm, evsm: box radius in texels */
     int max_radius;          /* msm_soft: the largest filter radius the table allows */
-    int storage;             /* msm float tables: PN_MOMENTS_POWER or PN_MOMENTS_OPTIMIZED16 */
+    int storage;             /* msm: PN_MOMENTS_POWER (z..z^4) or PN_MOMENTS_OPTIMIZED16 */
     int channels;            /* evsm: 2 (positive warp) or 4 (both) */
+    int limbs;               /* exact limb tables (msm power moments, evsm): limbs per value */
     float moment_bias;       /* msm: alpha in [0, 1) */
-    float noise_variance;    /* msm: a window's variance (depth^2) the storage cannot tell from 0 */
+    float pivot_floor;       /* msm: a Hankel pivot (depth^2 units) at or below this is zero (kernels/msm.h) */
     float depth_bias;        /* subtracted from the receiver's depth */
     float light_size;        /* msm_soft: as ChebyshevParams' */
     float min_variance;      /* evsm: depth^2, scaled by the warp's squared slope */

@@ -44,7 +44,7 @@ PN_KERNEL void vsm_exact(PN_GLOBAL const uint* table, PN_GLOBAL const float* rec
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
     const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
     const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);
-    const DepthMoments m = box_moments_exact(table, p.table, w.x0, w.x1, w.y0, w.y1);
+    const DepthMoments m = box_moments_exact(table, p.table, p.limbs, w.x0, w.x1, w.y0, w.y1);
     pn_store(out, p.out, pn_x, pn_y, chebyshev_visibility(m, r.z, p.min_variance, p.bleed));
 }
 

@@ -20,7 +20,7 @@
 #ifndef PENUMBRA_VSSM_H
 #define PENUMBRA_VSSM_H
 
-#define PN_VSSM_NO_BLOCKER 1e-4f   /* 1 - p below this: no blocker */
+#define PN_VSSM_NO_BLOCKER 1e-4    /* 1 - p below this: no blocker (double) */
 #define PN_VSSM_MIN_OCCLUDER 1e-4f /* z_occ floor, as a fraction of z */
 
 /* Filter half-width in texels for a receiver at z with blockers at z_occ. */
@@ -31,15 +31,17 @@ PN_FN pn_float vssm_filter_half_width(const ChebyshevParams p, pn_float z, pn_fl
     return pn_clamp(w * (0.5f * texels), 0.5f, (float)p.max_radius + 0.5f);
 }
 
-/* Step 1 from the search window's moments: the lit fraction's complement and
- * the blocker depth; `lit` marks receivers with no blocker. */
+/* Step 1 from the search window's moments, in double: the lit fraction's
+ * complement and the blocker depth; `lit` marks receivers with no blocker.
+ * The blocker depth is rounded to float for the window geometry. */
 PN_FN pn_float vssm_blocker_depth(DepthMoments search, pn_float z, float min_variance, pn_mask* lit)
 {
-    const pn_float p = chebyshev_upper_bound(search, z, min_variance);
-    const pn_float blocked = 1.0f - p;
-    *lit = blocked < PN_VSSM_NO_BLOCKER;
-    const pn_float safe_blocked = pn_max(blocked, PN_VSSM_NO_BLOCKER);
-    return (search.mean - p * z) / safe_blocked;
+    const pn_double zd = pn_to_double(z);
+    const pn_double p = chebyshev_upper_bound(search, zd, min_variance);
+    const pn_double blocked = 1.0 - p;
+    *lit = pn_dmask_to_mask(blocked < PN_VSSM_NO_BLOCKER);
+    const pn_double safe_blocked = pn_dmax(blocked, PN_VSSM_NO_BLOCKER);
+    return pn_double_to_float((search.mean - p * zd) / safe_blocked);
 }
 
 PN_FN FractionalWindow vssm_search_window(const ChebyshevParams p, Receiver r)
@@ -76,9 +78,9 @@ PN_KERNEL void vssm_exact(PN_GLOBAL const uint* table, PN_GLOBAL const float* re
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
     const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
     pn_mask lit;
-    const DepthMoments search = fractional_moments_exact(table, p.table, vssm_search_window(p, r));
+    const DepthMoments search = fractional_moments_exact(table, p.table, p.limbs, vssm_search_window(p, r));
     const pn_float z_occ = vssm_blocker_depth(search, r.z, p.min_variance, &lit);
-    const DepthMoments filter = fractional_moments_exact(table, p.table, vssm_filter_window(p, r, z_occ));
+    const DepthMoments filter = fractional_moments_exact(table, p.table, p.limbs, vssm_filter_window(p, r, z_occ));
     const pn_float visibility = chebyshev_visibility(filter, r.z, p.min_variance, p.bleed);
     pn_store(out, p.out, pn_x, pn_y, pn_select(lit, 1.0f, visibility));
 }

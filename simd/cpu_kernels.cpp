@@ -65,6 +65,46 @@ static void sat_block_exact_fenced(const float* depth, u32* table, u32* carry, u
     sat_block_exact(depth, table, carry, columns, column_row, bad_rows, p, x0, x1, y0, y1);
     _mm_sfence();
 }
+// The probes' index lanes, loaded as uint and reinterpreted.
+#if defined(PN_ISA_scalar)
+static pn_int pn_uint_to_int_lanes(pn_uint v) { return pn_int(v); }
+#else
+static pn_int pn_uint_to_int_lanes(pn_uint v) { return xsimd::bitwise_cast<pn_int>(v); }
+#endif
+
+// One strip of the double lanes (simd/cpu_kernels.h, dialect_double_probe).
+#if defined(PN_ISA_scalar)
+static void probe_store(double* out, pn_double d) { *out = d; }
+#else
+static void probe_store(double* out, pn_double d)
+{
+    d.lo.store_unaligned(out);
+    d.hi.store_unaligned(out + kLanes / 2);
+}
+#endif
+static void dialect_double_probe(const float* f, const u32* u, double* d, float* g, u32* v)
+{
+    const pn_dims dims{kLanes, 1, kLanes, kLanes};
+    const pn_float x = pn_load(f, dims, 0, 0);
+    const pn_uint n = pn_uload(u, dims, 0, 0);
+    const pn_double dx = pn_to_double(x);
+    probe_store(d, dx);
+    probe_store(d + kLanes, pn_uint_to_double(n));
+    probe_store(d + 2 * kLanes, (dx * 3.0 - 1.0) / 7.0);
+    pn_store(g, dims, 0, 0, pn_double_to_float(dx * 3.0));
+    pn_store(g + kLanes, dims, 0, 0, pn_select(pn_dmask_to_mask(dx > 0.5), 1.0f, 0.0f));
+    pn_store(g + 2 * kLanes, dims, 0, 0, pn_double_to_float(pn_dselect(pn_mask_to_dmask(x > 0.25f), 1.0, 0.0)));
+    pn_store(g + 3 * kLanes, dims, 0, 0, pn_dany(dx > 0.75) ? 1.0f : 0.0f);
+    pn_ustore(v, dims, 0, 0, pn_double_to_uint(pn_dfloor(pn_uint_to_double(n) / 2.0)));
+}
+static void dialect_gather_pair_probe(const u32* table, const int* index, u32* first, u32* second)
+{
+    const pn_dims dims{kLanes, 1, kLanes, kLanes};
+    pn_uint a, b;
+    pn_ugather_pair(table, pn_uint_to_int_lanes(pn_uload(reinterpret_cast<const u32*>(index), dims, 0, 0)), &a, &b);
+    pn_ustore(first, dims, 0, 0, a);
+    pn_ustore(second, dims, 0, 0, b);
+}
 }  // namespace penumbra::cpu::PN_ISA_NAMESPACE
 
 namespace penumbra::cpu {
@@ -79,6 +119,8 @@ static constexpr CpuKernels make_table()
     t.lanes = isa::kLanes;
     t.sat_block_float = &isa::sat_block_float_fenced;
     t.sat_block_exact = &isa::sat_block_exact_fenced;
+    t.dialect_double_probe = &isa::dialect_double_probe;
+    t.dialect_gather_pair_probe = &isa::dialect_gather_pair_probe;
     t.sat_bands_float = &isa::sat_bands_float;
     t.sat_bands_exact = &isa::sat_bands_exact;
     t.sat_join_bands_float = &isa::sat_join_bands_float;

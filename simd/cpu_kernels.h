@@ -26,6 +26,17 @@ struct CpuKernels {
     void (*sat_block_float)(const float*, float*, float*, float*, int, int*, SatParams, int, int, int, int);
     void (*sat_block_exact)(const float*, u32*, u32*, u32*, int, int*, SatParams, int, int, int, int);
 
+    // The double lanes of the dialect on one strip of `lanes` values (not an
+    // entry point; tests/registry_test.cpp, DialectDouble): for lane i,
+    // d[i] = to_double(f), d[L + i] = uint_to_double(u), d[2L + i] =
+    // (to_double(f) * 3 - 1) / 7 in double; g[i] = double_to_float(to_double(f) * 3),
+    // g[L + i] = (to_double(f) > 0.5 as a float mask) ? 1 : 0, g[2L + i] =
+    // (f > 0.25 as a double mask) ? 1 : 0, g[3L + i] = any lane's double > 0.75;
+    // v[i] = double_to_uint(floor(uint_to_double(u) / 2)).
+    void (*dialect_double_probe)(const float* f, const u32* u, double* d, float* g, u32* v);
+    // pn_ugather_pair on one strip: first[i] = table[index[i]], second[i] = table[index[i] + 1].
+    void (*dialect_gather_pair_probe)(const u32* table, const int* index, u32* first, u32* second);
+
     // Entry points, in the order of kernels/registry.h.
     void (*sat_bands_float)(const float*, float*, float*, float*, int*, SatParams, int task);
     void (*sat_bands_exact)(const float*, u32*, u32*, u32*, int*, SatParams, int task);

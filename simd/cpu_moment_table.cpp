@@ -67,9 +67,13 @@ void CpuBackend::build_moment_table(const Image& depth, MomentTable& table, int*
     p.depth = detail::dims_of(depth);
     p.table = detail::dims_of(table);
     p.moments = table.moments();
+    p.limbs = table.limbs();
+    p.encoding = table.values().kind;
+    p.exponent_positive = table.values().positive;
+    p.exponent_negative = table.values().negative;
     p.columns = {depth.width(), 1, padded_pitch(depth.width()), padded_pitch(depth.width())};
-    const std::size_t scratch = std::size_t(p.columns.plane_pitch) * p.moments;
-    const std::size_t carries = std::size_t(depth.height()) * p.moments;
+    const std::size_t scratch = std::size_t(p.columns.plane_pitch) * table.planes();
+    const std::size_t carries = std::size_t(depth.height()) * table.planes();
     auto run = [&](auto* origin, auto* columns, auto* carry, auto block_fn) {
         wavefront(bands, rows, [&](int bx, int by) {
             const int x0 = bx * bw, x1 = std::min(depth.width(), x0 + bw);

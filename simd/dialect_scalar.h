@@ -63,6 +63,31 @@ PN_FN float pn_as_float(std::uint32_t v)
     return value;
 }
 
+// Double lanes (kernels/dialect.h, "Double lanes"): plain double and bool.
+using pn_double = double;
+using pn_dmask = bool;
+PN_FN double pn_to_double(float v) { return double(v); }
+PN_FN float pn_double_to_float(double v) { return float(v); }
+PN_FN double pn_int_to_double(std::int32_t v) { return double(v); }
+PN_FN double pn_uint_to_double(std::uint32_t v) { return double(v); }
+// Truncation of a value in [0, 2^31), as the SIMD conversions do.
+PN_FN std::uint32_t pn_double_to_uint(double v) { return std::uint32_t(std::int32_t(v)); }
+PN_FN double pn_dmin(double a, double b) { return a < b ? a : b; }
+PN_FN double pn_dmax(double a, double b) { return a > b ? a : b; }
+PN_FN double pn_dclamp(double v, double lo, double hi) { return pn_dmin(pn_dmax(v, lo), hi); }
+PN_FN double pn_dabs(double v) { return std::fabs(v); }
+PN_FN double pn_dsqrt(double v) { return std::sqrt(v); }
+PN_FN double pn_dfloor(double v) { return std::floor(v); }
+PN_FN double pn_dexp(double v) { return std::exp(v); }
+PN_FN double pn_dselect(bool m, double a, double b) { return m ? a : b; }
+PN_FN bool pn_dand(bool a, bool b) { return a && b; }
+PN_FN bool pn_dor(bool a, bool b) { return a || b; }
+PN_FN bool pn_dnot(bool a) { return !a; }
+PN_FN bool pn_dany(bool m) { return m; }
+PN_FN bool pn_dfinite(double v) { return v - v == 0.0; }
+PN_FN bool pn_dmask_to_mask(bool m) { return m; }
+PN_FN bool pn_mask_to_dmask(bool m) { return m; }
+
 #define PN_PLANE(ptr, dims, c) ((ptr) + (std::size_t)(c) * (std::size_t)(dims).plane_pitch)
 
 PN_FN std::size_t pn_index(pn_dims d, int x, int y) { return std::size_t(y) * std::size_t(d.pitch) + std::size_t(x); }
@@ -83,6 +108,23 @@ PN_FN std::uint32_t pn_uload(const std::uint32_t* plane, pn_dims d, int x, int y
 PN_FN void pn_ustore(std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t v) { if (x < d.width) plane[pn_index(d, x, y)] = v; }
 PN_FN void pn_ustore_stream(std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t v) { pn_ustore(plane, d, x, y, v); }
 PN_FN std::uint32_t pn_ugather(const std::uint32_t* ptr, std::int32_t index) { return ptr[index]; }
+PN_FN void pn_ugather_pair(const std::uint32_t* ptr, std::int32_t index, std::uint32_t* first, std::uint32_t* second)
+{
+    *first = ptr[index];
+    *second = ptr[index + 1];
+}
+
+PN_FN void pn_ustore_pair_stream(std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t first, std::uint32_t second)
+{
+    if (x >= d.width) return;
+    plane[2 * pn_index(d, x, y)] = first;
+    plane[2 * pn_index(d, x, y) + 1] = second;
+}
+PN_FN void pn_uload_pair(const std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t* first, std::uint32_t* second)
+{
+    *first = x < d.width ? plane[2 * pn_index(d, x, y)] : 0u;
+    *second = x < d.width ? plane[2 * pn_index(d, x, y) + 1] : 0u;
+}
 
 // Many lanes (threads) may raise the same flag; only ones are written, but the
 // store is atomic so that the race is defined.

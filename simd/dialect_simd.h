@@ -13,7 +13,11 @@ using pn_uint = xsimd::batch<std::uint32_t, PN_ARCH>;
 using pn_mask = xsimd::batch_bool<float, PN_ARCH>;
 using uint = std::uint32_t;
 
-#define PN_FN static inline
+// Every description function is inlined into its kernel: the kernels pass
+// SIMD vectors between many small functions, and a call passes them through
+// memory. GCC's own heuristics stopped inlining the table queries once the
+// limb tables made them larger (measured: docs/moments.md, "Speed after issue 9").
+#define PN_FN static inline __attribute__((always_inline))
 #define PN_KERNEL static inline
 #define PN_GLOBAL
 
@@ -66,6 +70,147 @@ PN_FN pn_float pn_uint_to_float(pn_uint v)
     return pn_int_to_float(high) * 65536.0f + pn_int_to_float(low);
 }
 PN_FN pn_uint pn_float_to_uint(pn_float v) { return xsimd::bitwise_cast<pn_uint>(pn_to_int(v)); }
+
+// Double lanes (kernels/dialect.h): pn_double covers the lanes of pn_float,
+// as two xsimd double batches (lanes [0, N/2) in lo, [N/2, N) in hi), with
+// the arithmetic of xsimd on each half. Only the conversions between lane
+// widths need the ISA's own instructions.
+using pn_double_half = xsimd::batch<double, PN_ARCH>;
+using pn_dmask_half = xsimd::batch_bool<double, PN_ARCH>;
+struct pn_double {
+    pn_double_half lo, hi;
+    pn_double() = default;
+    pn_double(double v) : lo(v), hi(v) {}
+    pn_double(pn_double_half l, pn_double_half h) : lo(l), hi(h) {}
+};
+struct pn_dmask {
+    pn_dmask_half lo, hi;
+};
+#define PN_DOUBLE_BINARY(op)                                                                           \
+    PN_FN pn_double operator op(pn_double a, pn_double b) { return {a.lo op b.lo, a.hi op b.hi}; } \
+    PN_FN pn_double operator op(pn_double a, double b) { return a op pn_double(b); }               \
+    PN_FN pn_double operator op(double a, pn_double b) { return pn_double(a) op b; }
+PN_DOUBLE_BINARY(+)
+PN_DOUBLE_BINARY(-)
+PN_DOUBLE_BINARY(*)
+PN_DOUBLE_BINARY(/)
+#undef PN_DOUBLE_BINARY
+PN_FN pn_double operator-(pn_double a) { return {-a.lo, -a.hi}; }
+#define PN_DOUBLE_COMPARE(op)                                                                         \
+    PN_FN pn_dmask operator op(pn_double a, pn_double b) { return {a.lo op b.lo, a.hi op b.hi}; } \
+    PN_FN pn_dmask operator op(pn_double a, double b) { return a op pn_double(b); }               \
+    PN_FN pn_dmask operator op(double a, pn_double b) { return pn_double(a) op b; }
+PN_DOUBLE_COMPARE(<)
+PN_DOUBLE_COMPARE(<=)
+PN_DOUBLE_COMPARE(>)
+PN_DOUBLE_COMPARE(>=)
+PN_DOUBLE_COMPARE(==)
+#undef PN_DOUBLE_COMPARE
+PN_FN pn_double pn_dmin(pn_double a, pn_double b) { return {xsimd::min(a.lo, b.lo), xsimd::min(a.hi, b.hi)}; }
+PN_FN pn_double pn_dmax(pn_double a, pn_double b) { return {xsimd::max(a.lo, b.lo), xsimd::max(a.hi, b.hi)}; }
+PN_FN pn_double pn_dclamp(pn_double v, pn_double lo, pn_double hi) { return pn_dmin(pn_dmax(v, lo), hi); }
+PN_FN pn_double pn_dabs(pn_double v) { return {xsimd::abs(v.lo), xsimd::abs(v.hi)}; }
+PN_FN pn_double pn_dsqrt(pn_double v) { return {xsimd::sqrt(v.lo), xsimd::sqrt(v.hi)}; }
+PN_FN pn_double pn_dfloor(pn_double v) { return {xsimd::floor(v.lo), xsimd::floor(v.hi)}; }
+PN_FN pn_double pn_dexp(pn_double v) { return {xsimd::exp(v.lo), xsimd::exp(v.hi)}; }
+PN_FN pn_double pn_dselect(pn_dmask m, pn_double a, pn_double b)
+{
+    return {xsimd::select(m.lo, a.lo, b.lo), xsimd::select(m.hi, a.hi, b.hi)};
+}
+PN_FN pn_dmask pn_dand(pn_dmask a, pn_dmask b) { return {a.lo & b.lo, a.hi & b.hi}; }
+PN_FN pn_dmask pn_dor(pn_dmask a, pn_dmask b) { return {a.lo | b.lo, a.hi | b.hi}; }
+PN_FN pn_dmask pn_dnot(pn_dmask a) { return {!a.lo, !a.hi}; }
+PN_FN bool pn_dany(pn_dmask m) { return xsimd::any(m.lo) || xsimd::any(m.hi); }
+PN_FN pn_dmask pn_dfinite(pn_double v) { return (v - v) == 0.0; }
+
+#if defined(PN_ISA_avx512)
+PN_FN pn_double pn_to_double(pn_float v)
+{
+    const __m512d bits = _mm512_castps_pd(v);
+    return {_mm512_cvtps_pd(_mm512_castps512_ps256(v)), _mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(bits, 1)))};
+}
+PN_FN pn_float pn_double_to_float(pn_double d)
+{
+    const __m512d low = _mm512_castps_pd(_mm512_castps256_ps512(_mm512_cvtpd_ps(d.lo)));
+    return _mm512_castpd_ps(_mm512_insertf64x4(low, _mm256_castps_pd(_mm512_cvtpd_ps(d.hi)), 1));
+}
+PN_FN pn_double pn_int_to_double(pn_int v)
+{
+    return {_mm512_cvtepi32_pd(_mm512_castsi512_si256(v)), _mm512_cvtepi32_pd(_mm512_extracti64x4_epi64(v, 1))};
+}
+PN_FN pn_double pn_uint_to_double(pn_uint v)
+{
+    return {_mm512_cvtepu32_pd(_mm512_castsi512_si256(v)), _mm512_cvtepu32_pd(_mm512_extracti64x4_epi64(v, 1))};
+}
+PN_FN pn_int pn_double_to_int(pn_double d)
+{
+    return _mm512_inserti64x4(_mm512_castsi256_si512(_mm512_cvttpd_epi32(d.lo)), _mm512_cvttpd_epi32(d.hi), 1);
+}
+PN_FN pn_mask pn_dmask_to_mask(pn_dmask m)
+{
+    const __mmask8 lo = m.lo, hi = m.hi;
+    return pn_mask(__mmask16(unsigned(lo) | (unsigned(hi) << 8)));
+}
+PN_FN pn_dmask pn_mask_to_dmask(pn_mask m)
+{
+    const unsigned bits = __mmask16(m);
+    return {pn_dmask_half(__mmask8(bits & 0xFFu)), pn_dmask_half(__mmask8(bits >> 8))};
+}
+#elif defined(PN_ISA_avx2)
+PN_FN pn_double pn_to_double(pn_float v)
+{
+    return {_mm256_cvtps_pd(_mm256_castps256_ps128(v)), _mm256_cvtps_pd(_mm256_extractf128_ps(v, 1))};
+}
+PN_FN pn_float pn_double_to_float(pn_double d) { return _mm256_set_m128(_mm256_cvtpd_ps(d.hi), _mm256_cvtpd_ps(d.lo)); }
+PN_FN pn_double pn_int_to_double(pn_int v)
+{
+    return {_mm256_cvtepi32_pd(_mm256_castsi256_si128(v)), _mm256_cvtepi32_pd(_mm256_extracti128_si256(v, 1))};
+}
+// No unsigned conversion before AVX-512: flip the sign bit, convert as int32,
+// add 2^31 back (exact in double).
+PN_FN pn_double pn_uint_to_double(pn_uint v)
+{
+    const pn_int flipped = xsimd::bitwise_cast<pn_int>(v ^ pn_uint(0x80000000u));
+    return pn_int_to_double(flipped) + 2147483648.0;
+}
+PN_FN pn_int pn_double_to_int(pn_double d) { return _mm256_set_m128i(_mm256_cvttpd_epi32(d.hi), _mm256_cvttpd_epi32(d.lo)); }
+// Masks are all-ones lanes: keep the low 32 bits of each 64-bit lane.
+PN_FN pn_mask pn_dmask_to_mask(pn_dmask m)
+{
+    const __m256i even = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
+    const __m256i lo = _mm256_permutevar8x32_epi32(_mm256_castpd_si256(m.lo), even);
+    const __m256i hi = _mm256_permutevar8x32_epi32(_mm256_castpd_si256(m.hi), even);
+    return pn_mask(_mm256_castsi256_ps(_mm256_set_m128i(_mm256_castsi256_si128(hi), _mm256_castsi256_si128(lo))));
+}
+PN_FN pn_dmask pn_mask_to_dmask(pn_mask m)
+{
+    const __m256i bits = _mm256_castps_si256(m);
+    return {pn_dmask_half(_mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm256_castsi256_si128(bits)))),
+            pn_dmask_half(_mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm256_extracti128_si256(bits, 1))))};
+}
+#else
+PN_FN pn_double pn_to_double(pn_float v) { return {_mm_cvtps_pd(v), _mm_cvtps_pd(_mm_movehl_ps(v, v))}; }
+PN_FN pn_float pn_double_to_float(pn_double d) { return _mm_movelh_ps(_mm_cvtpd_ps(d.lo), _mm_cvtpd_ps(d.hi)); }
+PN_FN pn_double pn_int_to_double(pn_int v) { return {_mm_cvtepi32_pd(v), _mm_cvtepi32_pd(_mm_unpackhi_epi64(v, v))}; }
+PN_FN pn_double pn_uint_to_double(pn_uint v)
+{
+    const pn_int flipped = xsimd::bitwise_cast<pn_int>(v ^ pn_uint(0x80000000u));
+    return pn_int_to_double(flipped) + 2147483648.0;
+}
+PN_FN pn_int pn_double_to_int(pn_double d) { return _mm_unpacklo_epi64(_mm_cvttpd_epi32(d.lo), _mm_cvttpd_epi32(d.hi)); }
+PN_FN pn_mask pn_dmask_to_mask(pn_dmask m)
+{
+    return pn_mask(_mm_shuffle_ps(_mm_castpd_ps(m.lo), _mm_castpd_ps(m.hi), _MM_SHUFFLE(2, 0, 2, 0)));
+}
+PN_FN pn_dmask pn_mask_to_dmask(pn_mask m)
+{
+    const __m128i bits = _mm_castps_si128(m);
+    return {pn_dmask_half(_mm_castsi128_pd(_mm_cvtepi32_epi64(bits))),
+            pn_dmask_half(_mm_castsi128_pd(_mm_cvtepi32_epi64(_mm_unpackhi_epi64(bits, bits))))};
+}
+#endif
+// Truncation of values in [0, 2^31).
+PN_FN pn_uint pn_double_to_uint(pn_double d) { return xsimd::bitwise_cast<pn_uint>(pn_double_to_int(d)); }
 
 #define PN_PLANE(ptr, dims, c) ((ptr) + (std::size_t)(c) * (std::size_t)(dims).plane_pitch)
 
@@ -145,6 +290,89 @@ PN_FN pn_float pn_gather(const float* ptr, pn_int index)
 PN_FN pn_uint pn_ugather(const uint* ptr, pn_int index)
 {
     return xsimd::bitwise_cast<pn_uint>(pn_gather(reinterpret_cast<const float*>(ptr), index));
+}
+// Two adjacent elements per lane, ptr[index] and ptr[index + 1]: one 64-bit
+// gather element per lane instead of two 32-bit ones, then the pairs are
+// split by a permute.
+PN_FN void pn_ugather_pair(const uint* ptr, pn_int index, pn_uint* first, pn_uint* second)
+{
+#if defined(PN_ISA_avx512)
+    // The masked form with a zero source: GCC 12's unmasked one warns of an
+    // uninitialised source vector.
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i a = _mm512_mask_i32gather_epi64(zero, 0xFF, _mm512_castsi512_si256(index), ptr, 4);
+    const __m512i b = _mm512_mask_i32gather_epi64(zero, 0xFF, _mm512_extracti64x4_epi64(index, 1), ptr, 4);
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    const __m512i odd = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
+    *first = _mm512_permutex2var_epi32(a, even, b);
+    *second = _mm512_permutex2var_epi32(a, odd, b);
+#elif defined(PN_ISA_avx2)
+    const auto* base = reinterpret_cast<const long long*>(ptr);
+    const __m256i split = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
+    const __m256i a = _mm256_permutevar8x32_epi32(_mm256_i32gather_epi64(base, _mm256_castsi256_si128(index), 4), split);
+    const __m256i b = _mm256_permutevar8x32_epi32(_mm256_i32gather_epi64(base, _mm256_extracti128_si256(index, 1), 4), split);
+    *first = _mm256_permute2x128_si256(a, b, 0x20);
+    *second = _mm256_permute2x128_si256(a, b, 0x31);
+#else
+    alignas(64) std::int32_t lanes[kLanes];
+    alignas(64) uint a[kLanes], b[kLanes];
+    index.store_aligned(lanes);
+    for (int i = 0; i < kLanes; ++i) {
+        a[i] = ptr[lanes[i]];
+        b[i] = ptr[lanes[i] + 1];
+    }
+    *first = pn_uint::load_aligned(a);
+    *second = pn_uint::load_aligned(b);
+#endif
+}
+// Two strips interleaved lane by lane, (first[i], second[i]) at elements
+// 2 (y pitch + x + i) + 0 / 1: the pair planes of the limb tables
+// (kernels/moment_table.h). The interleave is a two-source permute.
+PN_FN void pn_ustore_pair_stream(uint* plane, pn_dims d, int x, int y, pn_uint first, pn_uint second)
+{
+#if defined(PN_ISA_avx512)
+    const __m512i low = _mm512_setr_epi32(0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
+    const __m512i high = _mm512_setr_epi32(8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31);
+    const pn_uint a = _mm512_permutex2var_epi32(first, low, second);
+    const pn_uint b = _mm512_permutex2var_epi32(first, high, second);
+#elif defined(PN_ISA_avx2)
+    const __m256i u0 = _mm256_unpacklo_epi32(first, second);  // f0 s0 f1 s1 | f4 s4 f5 s5
+    const __m256i u1 = _mm256_unpackhi_epi32(first, second);  // f2 s2 f3 s3 | f6 s6 f7 s7
+    const pn_uint a = _mm256_permute2x128_si256(u0, u1, 0x20);
+    const pn_uint b = _mm256_permute2x128_si256(u0, u1, 0x31);
+#else
+    const pn_uint a = _mm_unpacklo_epi32(first, second);
+    const pn_uint b = _mm_unpackhi_epi32(first, second);
+#endif
+    uint* p = plane + 2 * (std::size_t(y) * std::size_t(d.pitch) + std::size_t(x));
+    const int valid = d.width - x;
+    if (valid >= kLanes) {
+        if (reinterpret_cast<std::uintptr_t>(p) % (sizeof(uint) * kLanes) == 0) {
+            pn_stream_store(p, a);
+            pn_stream_store(p + kLanes, b);
+        } else {
+            a.store_unaligned(p);
+            b.store_unaligned(p + kLanes);
+        }
+        return;
+    }
+    alignas(64) uint tail[2 * kLanes];
+    a.store_aligned(tail);
+    b.store_aligned(tail + kLanes);
+    std::memcpy(p, tail, 2 * sizeof(uint) * std::size_t(valid > 0 ? valid : 0));
+}
+// Its inverse, lane by lane through memory: only the OpenCL-style join pass
+// reads pair planes back, never on the CPU backends' hot paths.
+PN_FN void pn_uload_pair(const uint* plane, pn_dims d, int x, int y, pn_uint* first, pn_uint* second)
+{
+    const uint* p = plane + 2 * (std::size_t(y) * std::size_t(d.pitch) + std::size_t(x));
+    alignas(64) uint a[kLanes] = {}, b[kLanes] = {};
+    for (int i = 0; i < kLanes && i < d.width - x; ++i) {
+        a[i] = p[2 * i];
+        b[i] = p[2 * i + 1];
+    }
+    *first = pn_uint::load_aligned(a);
+    *second = pn_uint::load_aligned(b);
 }
 PN_FN pn_float pn_fetch(const float* plane, pn_dims d, pn_int x, pn_int y)
 {

@@ -141,7 +141,7 @@ TEST_F(CliTest, ShadeRejectsBadOptions)
     expect_bad_input(shade("--method vssm --light-size 0"), "--light-size");
     expect_bad_input(shade("--method pcf"), "--method");
     expect_bad_input(shade("--method vsm --radius three"), "--radius");
-    expect_bad_input(shade("--method vsm --precision double"), "precision");
+    expect_bad_input(shade("--method vsm --precision float"), "--precision");
     expect_bad_input(shade("--method vsm --backend cuda"), "backend");
     expect_bad_input(shade("--method vsm --radius 128"), "radius");
     expect_bad_input(shade("--method vsm --frobnicate 1"), "--frobnicate");

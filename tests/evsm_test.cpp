@@ -152,6 +152,65 @@ PN_BACKEND_TEST(EvsmTest, MatchesTheReferenceOnTheTablesOwnSums)
     std::printf("[ evsm ] %s: worst distance outside the reference interval %.2g\n", backend.c_str(), worst);
 }
 
+// The default storage (exact 48-bit limb tables) against EVSM in double on
+// the float32 depths themselves (warps of each depth, window means, bound):
+// the limbs round each warp to 2^-49, so only the output's float rounding and
+// exp()'s last bits remain. Default and largest exponents, both warps, odd
+// sizes, receivers on, in front of and behind the surface, bleed on and off.
+PN_BACKEND_TEST(EvsmTest, DefaultStorageIsTheMethodInDouble)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    double worst = 0.0;
+    for (int channels : {2, 4})
+        for (float cp : {kEvsmPositiveExponentExact, kEvsmMaxExponentExact}) {
+            const float cn = channels == 4 ? kEvsmMaxExponentExact : 0.0f;
+            const int w = 1 + int(rng() % 23), h = 1 + int(rng() % 11);
+            Image depth = testing::random_depth(w, h, rng());
+            for (int i = 0; i < w * h / 4; ++i) depth.at(0, int(rng() % w), int(rng() % h)) = float(rng() % 2);
+            const EvsmTable table = build_evsm_table(ctx, depth, EvsmWarp{channels, cp, cn, Quantization::None});
+            Image rx = testing::receivers_on_texels(w, h, w, h, -0.1f, 1.1f, rng());
+            for (int i = 0; i < w * h; ++i) {
+                const int x = i % w, y = i / w;
+                if (i % 3 == 0) rx.at(2, x, y) = depth.at(0, x, y);
+                if (i % 3 == 1) rx.at(2, x, y) = depth.at(0, x, y) + 0.02f * (unit(rng) - 0.5f);
+            }
+            for (int radius : {0, 1, 3, 40})
+                for (float bleed : {0.0f, 0.3f}) {
+                    const EvsmOptions o{radius, kDefaultMinVariance, bleed, 0.0f};
+                    const Image out = evsm(ctx, table, rx, o);
+                    expect_visibility(out, backend);
+                    for (int y = 0; y < h; ++y)
+                        for (int x = 0; x < w; ++x) {
+                            const int x0 = std::max(x - radius, 0), x1 = std::min(x + radius + 1, w);
+                            const int y0 = std::max(y - radius, 0), y1 = std::min(y + radius + 1, h);
+                            double m[4] = {0, 0, 0, 0};
+                            for (int j = y0; j < y1; ++j)
+                                for (int i = x0; i < x1; ++i) {
+                                    const double z = depth.at(0, i, j);
+                                    const double p = std::exp(double(cp) * (z - 1.0)), n = std::exp(-double(cn) * z);
+                                    m[0] += p, m[1] += p * p, m[2] += n, m[3] += n * n;
+                                }
+                            const double area = double(x1 - x0) * (y1 - y0);
+                            const double zr = std::clamp(double(rx.at(2, x, y)), 0.0, 1.0);
+                            const double wp = std::exp(double(cp) * (zr - 1.0)), wn = std::exp(-double(cn) * zr);
+                            const double floor_p = kDefaultMinVariance * std::pow(double(cp) * wp, 2);
+                            double want = chebyshev(m[0] / area, m[1] / area, wp, floor_p, bleed);
+                            if (channels == 4)
+                                want = std::min(want, chebyshev(-m[2] / area, m[3] / area, -wn,
+                                                                kDefaultMinVariance * std::pow(double(cn) * wn, 2),
+                                                                bleed));
+                            const double got = out.at(0, x, y);
+                            worst = std::max(worst, std::abs(got - want));
+                            ASSERT_NEAR(got, want, 1e-5) << backend << " EVSM" << channels << " c+ " << cp << " r="
+                                                         << radius << " " << w << "x" << h << " at " << x << "," << y;
+                        }
+                }
+        }
+    std::printf("[ evsm ] %s: default storage, worst |kernel - double| %.2g\n", backend.c_str(), worst);
+}
+
 // The stored channels are the warps, to the storage's precision: 16-bit
 // steps of e^{c+(z-1)}, its square, e^{-c- z} and its square against exp() in
 // double (within one step: the kernel's exp and rounding are float); float

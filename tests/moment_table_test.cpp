@@ -55,17 +55,31 @@ void for_rectangles(int w, int h, std::uint32_t seed, Check&& check)
 PN_BACKEND_TEST(MomentTableTest, ExactSumsMatchBruteForce)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    for (int moments : {2, 4})
-        for (Size s : odd_sizes()) {
-            const Image depth = testing::random_depth(s.w, s.h, 7u * s.w + s.h);
-            const MomentTable table = build_moment_table(ctx, depth, moments, Precision::Exact);
-            for_rectangles(s.w, s.h, 11, [&](int x0, int x1, int y0, int y1) {
-                for (int k = 1; k <= moments; ++k)
-                    ASSERT_EQ(table.exact_box_sum(k, x0, x1, y0, y1), testing::brute_exact_sum(depth, k, x0, x1, y0, y1))
-                        << s.w << "x" << s.h << " moment " << k << " rect [" << x0 << "," << x1 << ")x[" << y0 << ","
-                        << y1 << ")";
-            });
-        }
+    // 2 limbs (VSM, VSSM) and 3 (MSM, EVSM): pair planes with and without the limb-2 plane after them.
+    for (int limbs : {2, 3})
+        for (int moments : {2, 4})
+            for (Size s : odd_sizes()) {
+                const Image depth = testing::random_depth(s.w, s.h, 7u * s.w + s.h);
+                MomentTable table(s.w, s.h, moments, Precision::Exact, limbs);
+                build_moment_table(ctx, depth, table);
+                for_rectangles(s.w, s.h, 11, [&](int x0, int x1, int y0, int y1) {
+                    for (int k = 1; k <= table.planes(); ++k)
+                        ASSERT_EQ(table.exact_box_sum(k, x0, x1, y0, y1),
+                                  testing::brute_exact_sum(depth, k, table.limbs(), x0, x1, y0, y1))
+                            << s.w << "x" << s.h << " limbs " << limbs << " plane " << k << " rect [" << x0 << ","
+                            << x1 << ")x[" << y0 << "," << y1 << ")";
+                });
+            }
+}
+
+// The pair planes' corner (0, 0) reads the two elements before their origin:
+// in a 3-limb table the last two of the previous value's limb-2 plane, its
+// last row's padding (kernels/moment_table.h, layout). Widths 15 and 31 are
+// the ones a one-element padding would break.
+TEST(MomentTableLayout, RowsKeepTwoZeroElementsOfPadding)
+{
+    for (int w : {1, 14, 15, 16, 17, 31, 47, 4095, 4096})
+        for (int limbs : {1, 2, 3}) EXPECT_GE(MomentTable(w, 3, 4, Precision::Exact, limbs).pitch(), w + 2) << w;
 }
 
 // Depths in sixteenths keep every float partial sum of z and z^2 exact on
@@ -112,8 +126,9 @@ PN_BACKEND_TEST(MomentTableTest, ExactOnConstantAndRampAt1024)
         const MomentTable table = build_moment_table(ctx, *map, 2, Precision::Exact);
         for_rectangles(n, n, 23, [&](int x0, int x1, int y0, int y1) {
             if ((x1 - x0) * (y1 - y0) > kExactMaxWindowArea) return;
-            for (int k = 1; k <= 2; ++k)
-                ASSERT_EQ(table.exact_box_sum(k, x0, x1, y0, y1), testing::brute_exact_sum(*map, k, x0, x1, y0, y1));
+            for (int k = 1; k <= table.planes(); ++k)
+                ASSERT_EQ(table.exact_box_sum(k, x0, x1, y0, y1),
+                          testing::brute_exact_sum(*map, k, table.limbs(), x0, x1, y0, y1));
         });
     }
 }
@@ -121,7 +136,7 @@ PN_BACKEND_TEST(MomentTableTest, ExactOnConstantAndRampAt1024)
 INSTANTIATE_TEST_SUITE_P(Backends, MomentTableTest, ::testing::ValuesIn(backend_names()), backend_test_name);
 
 // The exact claim at the largest supported size: every window of at most
-// 65537 texels has exact sums, though the table itself wraps many times.
+// 65535 texels has exact sums, though the table itself wraps many times.
 TEST(MomentTableSlowTest, ExactAt16384OnConstantAndRamp)
 {
     Context ctx(ContextOptions{Backend::Simd, {}});
@@ -137,8 +152,9 @@ TEST(MomentTableSlowTest, ExactAt16384OnConstantAndRamp)
         std::uniform_int_distribution<int> pos(0, n - 1), len(1, 255);
         int checked = 0;
         auto check = [&](int x0, int x1, int y0, int y1) {
-            for (int k = 1; k <= 2; ++k)
-                ASSERT_EQ(table.exact_box_sum(k, x0, x1, y0, y1), testing::brute_exact_sum(map, k, x0, x1, y0, y1))
+            for (int k = 1; k <= table.planes(); ++k)
+                ASSERT_EQ(table.exact_box_sum(k, x0, x1, y0, y1),
+                          testing::brute_exact_sum(map, k, table.limbs(), x0, x1, y0, y1))
                     << "pattern " << pattern << " rect [" << x0 << "," << x1 << ")x[" << y0 << "," << y1 << ")";
             ++checked;
         };

@@ -76,27 +76,25 @@ TEST_F(MomentsCli, EveryMethodMatchesTheLibrary)
     expect_same("--method msm --radius 3", [&](Context& c) {
         return msm(c, build_msm_table(c, map_), rx_, MsmOptions{3, {}, {}});
     });
-    expect_same("--method msm --radius 1 --quantize 32 --precision float --moment-bias 1e-4 --depth-bias 1e-3",
-                [&](Context& c) {
-                    return msm(c, build_msm_table(c, map_, Quantization::Bits32, Precision::Float), rx_,
-                               MsmOptions{1, 1e-4f, 1e-3f});
-                });
-    expect_same("--method msm --quantize 16 --precision float", [&](Context& c) {
-        return msm(c, build_msm_table(c, map_, Quantization::Bits16, Precision::Float), rx_, MsmOptions{});
+    expect_same("--method msm --radius 1 --moment-bias 1e-4 --depth-bias 1e-3", [&](Context& c) {
+        return msm(c, build_msm_table(c, map_, Quantization::None), rx_, MsmOptions{1, 1e-4f, 1e-3f});
+    });
+    expect_same("--method msm --quantize 16", [&](Context& c) {
+        return msm(c, build_msm_table(c, map_, Quantization::Bits16), rx_, MsmOptions{});
     });
     expect_same("--method msm-soft --light-size 0.1", [&](Context& c) {
         return msm_soft(c, build_msm_table(c, map_), rx_, MsmSoftOptions{0.1f, {}, {}});
     });
-    expect_same("--method evsm2 --exponents 3", [&](Context& c) {
-        return evsm(c, build_evsm_table(c, map_, EvsmWarp{2, 3.0f, {}, Quantization::Bits16}), rx_, EvsmOptions{});
+    expect_same("--method msm-soft --light-size 0.1 --quantize 16", [&](Context& c) {
+        return msm_soft(c, build_msm_table(c, map_, Quantization::Bits16), rx_, MsmSoftOptions{0.1f, {}, {}});
     });
-    expect_same("--method evsm4 --exponents 20,4 --quantize 32 --precision float --min-variance 1e-5 --bleed 0.2 "
-                "--radius 1 --depth-bias 0.001",
+    expect_same("--method evsm2 --exponents 3", [&](Context& c) {
+        return evsm(c, build_evsm_table(c, map_, EvsmWarp{2, 3.0f, {}, Quantization::None}), rx_, EvsmOptions{});
+    });
+    expect_same("--method evsm4 --exponents 9,4 --min-variance 1e-5 --bleed 0.2 --radius 1 --depth-bias 0.001",
                 [&](Context& c) {
-                    return evsm(c,
-                                build_evsm_table(c, map_, EvsmWarp{4, 20.0f, 4.0f, Quantization::Bits32},
-                                                 Precision::Float),
-                                rx_, EvsmOptions{1, 1e-5f, 0.2f, 0.001f});
+                    return evsm(c, build_evsm_table(c, map_, EvsmWarp{4, 9.0f, 4.0f, Quantization::None}), rx_,
+                                EvsmOptions{1, 1e-5f, 0.2f, 0.001f});
                 });
 }
 
@@ -107,10 +105,12 @@ TEST_F(MomentsCli, BadOptionsNameTheOption)
     expect_bad_option("--method msm-soft --depth-bias 1.5", "--depth-bias");
     expect_bad_option("--method evsm4 --depth-bias -1e-3", "--depth-bias");
     expect_bad_option("--method msm --quantize 8", "--quantize");
-    expect_bad_option("--method msm --quantize 32", "--quantize: 32-bit floats cannot be summed exactly");
-    expect_bad_option("--method evsm4 --exponents 6,5", "positive exponent 6");
-    expect_bad_option("--method evsm4 --exponents 5,6", "negative exponent 6");
-    expect_bad_option("--method evsm2 --exponents 43 --quantize 32 --precision float", "exceeds 42");
+    expect_bad_option("--method msm --quantize 32", "--quantize: '32' is not 16");
+    expect_bad_option("--method evsm2 --quantize 16", "--quantize: applies to msm and msm-soft only");
+    expect_bad_option("--method msm --precision float", "--precision");
+    expect_bad_option("--method evsm4 --exponents 11,5", "positive exponent 11");
+    expect_bad_option("--method evsm4 --exponents 5,11", "negative exponent 11");
+    expect_bad_option("--method evsm2 --exponents 43", "exceeds 10");
     expect_bad_option("--method evsm4 --exponents 3", "--exponents: evsm4 needs two");
     expect_bad_option("--method evsm2 --exponents 3,2", "--exponents: evsm2 has only the positive warp");
     expect_bad_option("--method evsm4 --exponents a,b", "--exponents");

@@ -140,7 +140,7 @@ TEST(MomentsQuantization, ParsesSixteenAndThirtyTwo)
 {
     EXPECT_EQ(parse_quantization("16"), Quantization::Bits16);
     EXPECT_EQ(parse_quantization("32"), Quantization::Bits32);
-    expect_error([] { parse_quantization("8"); }, kArg, "quantize", "'8' is not 16 or 32");
+    expect_error([] { parse_quantization("8"); }, kArg, "quantize", "'8' is not none, 16 or 32");
 }
 
 }  // namespace

@@ -35,9 +35,20 @@ void expect_visibility(const Image& out, const std::string& where)
         }
 }
 
+// The depths of VSM's box window around texel (x, y), one atom each.
+std::vector<Atom> window_atoms(const Image& depth, int x, int y, int radius)
+{
+    std::vector<Atom> atoms;
+    const int w = depth.width(), h = depth.height();
+    for (int j = std::max(y - radius, 0); j < std::min(y + radius + 1, h); ++j)
+        for (int i = std::max(x - radius, 0); i < std::min(x + radius + 1, w); ++i)
+            atoms.push_back({double(depth.at(0, i, j)), 1.0});
+    return atoms;
+}
+
 MsmTable table_for(Context& ctx, const Image& depth, Quantization q)
 {
-    return build_msm_table(ctx, depth, q, q == Quantization::Bits16 ? Precision::Exact : Precision::Float);
+    return build_msm_table(ctx, depth, q, q == Quantization::Bits32 ? Precision::Float : Precision::Exact);
 }
 
 // ---- the reference itself -----------------------------------------------------
@@ -116,7 +127,7 @@ class MsmTest : public ::testing::TestWithParam<std::string> {};
 PN_BACKEND_TEST(MsmTest, WithinTheExactBoundUpToDepthUncertainty)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    for (Quantization q : {Quantization::Bits16, Quantization::Bits32})
+    for (Quantization q : {Quantization::None, Quantization::Bits32})
         for (float alpha : {6e-5f, 1e-3f}) {
             std::mt19937 rng(7);
             std::uniform_real_distribution<float> unit(0.0f, 1.0f), near(-0.05f, 0.05f);
@@ -138,35 +149,140 @@ PN_BACKEND_TEST(MsmTest, WithinTheExactBoundUpToDepthUncertainty)
                 expect_visibility(out, backend);
                 for (int y = 0; y < h; ++y)
                     for (int x = 0; x < w; ++x) {
-                        std::vector<Atom> atoms;
-                        for (int j = std::max(y - radius, 0); j < std::min(y + radius + 1, h); ++j)
-                            for (int i = std::max(x - radius, 0); i < std::min(x + radius + 1, w); ++i)
-                                atoms.push_back({depth.at(0, i, j), 1.0});
+                        const std::vector<Atom> atoms = window_atoms(depth, x, y, radius);
                         const double e = excess(atoms, alpha, rx.at(2, x, y), 1.0 - out.at(0, x, y), delta);
                         worst = std::max(worst, e);
                         ASSERT_LE(e, 0.01)
-                            << backend << " " << to_string(q) << "-bit alpha " << alpha << " trial " << trial
+                            << backend << " " << to_string(q) << " storage, alpha " << alpha << " trial " << trial
                             << " receiver " << x << "," << y << " z " << rx.at(2, x, y);
                     }
             }
-            std::printf("[ msm ] %s %s-bit alpha %g: worst excess over the exact bound (delta %g) %.4f\n",
+            std::printf("[ msm ] %s %s storage, alpha %g: worst excess over the exact bound (delta %g) %.4f\n",
                         backend.c_str(), to_string(q).c_str(), alpha, delta, worst);
         }
+}
+
+// The default storage (exact 3-limb tables) against MSM in double on the
+// float32 depths themselves (the reference's msm_bound of the biased window
+// moments): random, ramp and near-0/near-1 two-layer maps, odd sizes, radii
+// 0 to 20, receivers on, in front of and behind the surface; the issue's
+// tolerance 1e-3, plus twice the movement for ill-conditioned receivers (the
+// worst deviation of the well-conditioned ones is printed).
+// The body of the two tests below: `q`'s table against MSM in double on the
+// window's moments, the float32 depths' own (None) or the dequantized
+// 16-bit ones (Bits16: testing::table_moments decodes the table's exact
+// sums in double), with the issue's conditioning rule. Windows whose biased
+// moments are no moment vector (possible only when dequantized) are checked
+// for validity only.
+void expect_msm_in_double(Context& ctx, const std::string& backend, Quantization q)
+{
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    double worst = 0.0;
+    int checked = 0, skipped = 0;
+    for (int trial = 0; trial < 18; ++trial) {
+        const int w = 1 + int(rng() % 33), h = 1 + int(rng() % 17);
+        Image depth(w, h, 1);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                depth.at(0, x, y) = trial % 3 == 0   ? unit(rng)
+                                    : trial % 3 == 1 ? float(x + 2 * y) / float(w + 2 * h)
+                                                     : (rng() % 3 ? 0.05f : 0.97f) + 1e-4f * unit(rng);
+        const MsmTable table = build_msm_table(ctx, depth, q);
+        Image rx = testing::receivers_on_texels(w, h, w, h, 0.0f, 1.0f, rng());
+        for (int i = 0; i < w * h; ++i) {
+            const int x = i % w, y = i / w;
+            if (i % 3 == 0) rx.at(2, x, y) = depth.at(0, x, y);
+            if (i % 3 == 1) rx.at(2, x, y) = depth.at(0, x, y) + 0.05f * (unit(rng) - 0.5f);
+        }
+        const float alpha = default_moment_bias(q);
+        const double bias = default_depth_bias(q);
+        for (int radius : {0, 1, 3, 20}) {
+            const Image out = msm(ctx, table, rx, MsmOptions{radius, {}, {}});
+            expect_visibility(out, backend);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const int x0 = std::max(x - radius, 0), x1 = std::min(x + radius + 1, w);
+                    const int y0 = std::max(y - radius, 0), y1 = std::min(y + radius + 1, h);
+                    const Moments4 raw = q == Quantization::Bits16
+                                             ? testing::table_moments(table, x0, x1, y0, y1)
+                                             : testing::moments_of(window_atoms(depth, x, y, radius));
+                    const Moments4 b = testing::biased(raw, alpha);
+                    const double z = double(rx.at(2, x, y)) - bias;
+                    auto answer = [&](Moments4 m) {
+                        // kernels/msm.h's safety net, part of the method as it defines
+                        // it: the intensity within Cantelli's two-sided bounds of (b1', b2')
+                        // (a no-op on valid moments; dequantized ones can leave the moment
+                        // space), then in [0, 1].
+                        const double var = std::max(m[2] - m[1] * m[1], 0.0);
+                        auto tail = [&](double d) { return d <= 0.0 ? 1.0 : var / std::max(var + d * d, 1e-300); };
+                        const double lower = 1.0 - tail(z - m[1]), upper = tail(m[1] - z);
+                        const double g = std::clamp(std::clamp(testing::msm_bound(m, z).intensity, lower, upper), 0.0, 1.0);
+                        return z <= 0.0 ? 1.0 : z > 1.0 ? 0.0 : 1.0 - g;
+                    };
+                    const double want = answer(b);
+                    // The issue's conditioning probe: each moment moved by a relative
+                    // 2^-20 either way; where the answer moves by more than the
+                    // tolerance, the tolerance grows by twice that movement.
+                    double movement = 0.0;
+                    for (int k = 1; k <= 4; ++k)
+                        for (double sign : {-1.0, 1.0}) {
+                            Moments4 moved = b;
+                            moved[k] *= 1.0 + sign * 0x1p-20;
+                            movement = std::max(movement, std::abs(answer(moved) - want));
+                        }
+                    // Dequantized moments can leave the moment space (a Hankel matrix
+                    // that is not positive definite even after the bias): there the
+                    // kernel's fallbacks (kernels/msm.h: two-point fit, Cantelli) define
+                    // the answer, which the reference's bound does not model.
+                    const double d2 = b[2] - b[1] * b[1];
+                    const double d3d2 = (b[4] - b[2] * b[2]) * d2 - std::pow(b[3] - b[1] * b[2], 2);
+                    const bool ill = movement > 1e-3 || !(d2 > 0.0 && d3d2 > 1e-13 * b[4] * d2);
+                    const double got = out.at(0, x, y);
+                    if (ill) {
+                        ++skipped;
+                    } else {
+                        ++checked;
+                        worst = std::max(worst, std::abs(got - want));
+                    }
+                    if (ill && !(d2 > 0.0 && d3d2 > 1e-13 * b[4] * d2)) continue;  // validity only
+                    ASSERT_NEAR(got, want, 1e-3 + (ill ? 2.0 * movement : 0.0))
+                        << backend << " trial " << trial << " r=" << radius << " at " << x << "," << y << " z "
+                        << rx.at(2, x, y) << " movement " << movement;
+                }
+        }
+    }
+    std::printf("[ msm ] %s %s: worst |kernel - double| %.2g over %d receivers (and %d ill-conditioned)\n",
+                backend.c_str(), to_string(q).c_str(), worst, checked, skipped);
+}
+
+PN_BACKEND_TEST(MsmTest, DefaultStorageIsTheMethodInDouble)
+{
+    expect_msm_in_double(PN_CONTEXT_OR_SKIP(backend), backend, Quantization::None);
+}
+
+// The opt-in 16-bit quantization: faithful to its dequantized moments (its
+// own error against the depths is bench/msm_quantization_error's).
+PN_BACKEND_TEST(MsmTest, SixteenBitStorageIsTheMethodOnItsDequantizedMoments)
+{
+    expect_msm_in_double(PN_CONTEXT_OR_SKIP(backend), backend, Quantization::Bits16);
 }
 
 // ---- the windows where it fails, every backend -----------------------------------
 
 // Every 16-bit depth as a one-texel window (and, on a constant map, windows of
-// every size): the variance is within the quantization noise, so the window
-// is one depth and the answer exact: in front of it (by the default depth
-// bias, two steps) 1 - alpha/2, behind it alpha/2.
+// every size). The biased window is three atoms (alpha / 2 at 0 and 1): its
+// Hankel matrix is definite, so the answer is the sharp bound of the biased
+// moments (the reference's msm_bound, in double), which is 1 - alpha/2 in
+// front of the depth and alpha/2 well behind it; just behind it the bound is
+// lighter than the atoms' truth, as the method defines.
 PN_BACKEND_TEST(MsmTest, EverySixteenBitDepthAsAOneDepthWindow)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     Image depth(256, 256, 1);
     for (int i = 0; i < 65536; ++i) depth.at(0, i % 256, i / 256) = float(i) / 65535.0f;
-    const MsmTable table = table_for(ctx, depth, Quantization::Bits16);
-    const float alpha = kMsmMomentBias16, step = 1.0f / 65535.0f;
+    const MsmTable table = table_for(ctx, depth, Quantization::None);
+    const float alpha = kMsmMomentBiasExact, step = 1.0f / 65535.0f;
     struct Case {
         float shift;   // receiver depth - texel depth
         float expect;  // visibility
@@ -179,12 +295,23 @@ PN_BACKEND_TEST(MsmTest, EverySixteenBitDepthAsAOneDepthWindow)
         const Image out = msm(ctx, table, rx, MsmOptions{0, {}, {}});
         expect_visibility(out, backend);
         for (int i = 0; i < 65536; ++i) {
-            const float z = rx.at(2, i % 256, i / 256) - kMsmDepthBias16;
+            const double z = double(rx.at(2, i % 256, i / 256)) - double(kMsmDepthBiasExact);
+            const Moments4 b = testing::biased(testing::moments_of({{double(depth.at(0, i % 256, i / 256)), 1}}), alpha);
             // The near plane and beyond the far plane are exact by definition.
-            const float want = z <= 0.0f ? 1.0f : (z > 1.0f ? 0.0f : c.expect);
-            // 1e-5: Cantelli's clamp sees the decoded moments' noise (docs/moments.md).
-            ASSERT_NEAR(out.at(0, i % 256, i / 256), want, 1e-5) << backend << " depth " << i << "/65535 shift "
+            const double want = z <= 0.0 ? 1.0 : (z > 1.0 ? 0.0 : 1.0 - testing::msm_bound(b, z).intensity);
+            // Within 2^-8 of 0 or 1 the biased Hankel matrix is nearly singular
+            // (det ~ alpha^2 z^2 / 4, down to 1e-18): the float64 answer itself moves
+            // by more than the tolerance when the moments move by a relative 2^-20
+            // (an ill-conditioned receiver, issue 9); there only validity is checked.
+            // So is a receiver a few 1e-5 behind the depth: the bound's support
+            // point sits within 1e-7 of 1, where Hamburger hands over to Hausdorff.
+            const float depth_i = depth.at(0, i % 256, i / 256);
+            if (depth_i < 1.0f / 256.0f || depth_i > 255.0f / 256.0f || c.shift == 3 * step) continue;
+            ASSERT_NEAR(out.at(0, i % 256, i / 256), want, 1e-3) << backend << " depth " << i << "/65535 shift "
                                                                  << c.shift;
+            if (std::abs(c.shift) >= 0.01f && z > 0.0 && z < 1.0) {
+                ASSERT_NEAR(out.at(0, i % 256, i / 256), c.expect, 1e-4) << backend << " depth " << i;
+            }
         }
     }
 }
@@ -194,7 +321,7 @@ PN_BACKEND_TEST(MsmTest, EverySixteenBitDepthAsAOneDepthWindow)
 PN_BACKEND_TEST(MsmTest, ConstantMapsAnyWindow)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    for (Quantization q : {Quantization::Bits16, Quantization::Bits32})
+    for (Quantization q : {Quantization::None, Quantization::Bits32})
         for (float level : {0.0f, 0.0625f, 0.5f, 0.9375f, 1.0f}) {
             Image depth(37, 23, 1);
             depth.fill(0, level);
@@ -207,7 +334,13 @@ PN_BACKEND_TEST(MsmTest, ConstantMapsAnyWindow)
                     const Image out = msm(ctx, table, rx, MsmOptions{radius, {}, {}});
                     expect_visibility(out, backend);
                     const float zf = z - default_depth_bias(q);
-                    const float want = zf <= 0.0f ? 1.0f : zf > 1.0f ? 0.0f : shift < 0 ? 1.0f - alpha / 2 : alpha / 2;
+                    // Exact storage: the bound of the biased moments (see above); float
+                    // storage sees a one-depth window through its noise floor: exact atoms.
+                    const Moments4 b = testing::biased(testing::moments_of({{double(level), 1}}), alpha);
+                    const double bound = 1.0 - testing::msm_bound(b, double(z) - default_depth_bias(q)).intensity;
+                    const double atoms = shift < 0 ? 1.0f - alpha / 2 : alpha / 2;
+                    const double inside = q == Quantization::None ? bound : atoms;
+                    const double want = zf <= 0.0f ? 1.0 : zf > 1.0f ? 0.0 : inside;
                     for (int i = 0; i < 37 * 23; ++i)
                         ASSERT_NEAR(out.at(0, i % 37, i / 37), want, 1e-5)
                             << backend << " " << to_string(q) << "-bit level " << level << " r=" << radius << " z "
@@ -226,7 +359,7 @@ PN_BACKEND_TEST(MsmTest, DepthsZeroAndOneOnly)
     std::mt19937 rng(3);
     for (int y = 0; y < 11; ++y)
         for (int x = 0; x < 23; ++x) depth.at(0, x, y) = float(rng() % 3 == 0);
-    for (Quantization q : {Quantization::Bits16, Quantization::Bits32}) {
+    for (Quantization q : {Quantization::None, Quantization::Bits32}) {
         const MsmTable table = table_for(ctx, depth, q);
         const float alpha = default_moment_bias(q);
         for (int radius : {0, 1, 4, 127})
@@ -255,7 +388,7 @@ PN_BACKEND_TEST(MsmTest, DepthsZeroAndOneOnly)
 PN_BACKEND_TEST(MsmTest, TwoDepthsAndAReceiverAtTheBlocker)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    for (Quantization q : {Quantization::Bits16, Quantization::Bits32}) {
+    for (Quantization q : {Quantization::None, Quantization::Bits32}) {
         Image depth(16, 16, 1);
         for (int y = 0; y < 16; ++y)
             for (int x = 0; x < 16; ++x) depth.at(0, x, y) = x < 6 ? 0.25f : 0.75f;  // 6 / 16 blockers
@@ -306,7 +439,7 @@ PN_BACKEND_TEST(MsmTest, NeverNaNOnAnything)
             Image rx = testing::receivers_on_texels(w, h, w, h, 0.0f, 1.0f, rng());
             for (int y = 0; y < h; ++y)
                 for (int x = 0; x < w; ++x) rx.at(2, x, y) = rng() % 3 ? depth.at(0, x, y) : wide(rng);
-            for (Quantization q : {Quantization::Bits16, Quantization::Bits32}) {
+            for (Quantization q : {Quantization::None, Quantization::Bits16, Quantization::Bits32}) {
                 const MsmTable table = table_for(ctx, depth, q);
                 for (int radius : {0, 5})
                     for (float alpha : {0.0f, 6e-5f, 0.5f})
@@ -353,7 +486,7 @@ TEST(MsmBias, SixteenBitDefaultCoversTheWorstOneDepthWindow)
     Context ctx(ContextOptions{Backend::Scalar, {}});
     Image depth(256, 256, 1);
     for (int i = 0; i < 65536; ++i) depth.at(0, i % 256, i / 256) = float(i) / 65535.0f;
-    const MsmTable table = build_msm_table(ctx, depth);
+    const MsmTable table = build_msm_table(ctx, depth, Quantization::Bits16);
     double needed = 0.0, worst_variance = 0.0;
     for (int i = 0; i < 65536; ++i) {
         const Moments4 b = testing::table_moments(table, i % 256, i % 256 + 1, i / 256, i / 256 + 1);
@@ -399,10 +532,7 @@ TEST(MsmBiasFigures, DISABLED_ExcessOverAlpha)
                 const Image out = msm(ctx, table_for(ctx, depth, q), rx, MsmOptions{radius, alpha, 0.0f});
                 for (int y = 0; y < h; ++y)
                     for (int x = 0; x < w; ++x) {
-                        std::vector<Atom> atoms;
-                        for (int j = std::max(y - radius, 0); j < std::min(y + radius + 1, h); ++j)
-                            for (int i = std::max(x - radius, 0); i < std::min(x + radius + 1, w); ++i)
-                                atoms.push_back({depth.at(0, i, j), 1.0});
+                        const std::vector<Atom> atoms = window_atoms(depth, x, y, radius);
                         const double deltas[3] = {1e-4, 1e-3, 1e-2};
                         for (int k = 0; k < 3; ++k)
                             worst[k] = std::max(worst[k], excess(atoms, alpha, rx.at(2, x, y),

@@ -53,10 +53,10 @@ constexpr int registry_size()
     return n;
 }
 
-// isa, lanes, the two wavefront block functions, then one pointer per entry,
-// then the three spans of the bilateral filter.
+// isa, lanes, the two wavefront block functions, the two dialect probes, then
+// one pointer per entry, then the three spans of the bilateral filter.
 static_assert(sizeof(cpu::CpuKernels) ==
-                  offsetof(cpu::CpuKernels, sat_block_float) + (5 + registry_size()) * sizeof(void (*)()),
+                  offsetof(cpu::CpuKernels, sat_block_float) + (7 + registry_size()) * sizeof(void (*)()),
               "CpuKernels has a member that kernels/registry.h lacks (or the reverse)");
 
 std::vector<std::string> cpu_tables()
@@ -78,6 +78,59 @@ TEST(Registry, EveryEntryIsInEveryCpuTable)
 #undef PN_CHECK_ENTRY
         EXPECT_NE(table.sat_block_float, nullptr) << isa;
         EXPECT_NE(table.sat_block_exact, nullptr) << isa;
+    }
+}
+
+// The dialect's double lanes (kernels/dialect.h) on every CPU binding: lane
+// order across the two halves of a SIMD pn_double, uint32 above 2^31, the
+// roundings, and masks both ways. (OpenCL's binding is plain double; the
+// moment kernels' cross-backend tests cover it.)
+TEST(DialectDouble, ConversionsArithmeticAndMasksOnEveryCpuBinding)
+{
+    for (const std::string& isa : cpu_tables()) {
+        const cpu::CpuKernels& table = cpu::kernels_for(isa);
+        const int n = table.lanes;
+        std::vector<float> f(n), g(4 * std::size_t(n));
+        std::vector<cpu::u32> u(n), v(n);
+        std::vector<double> d(3 * std::size_t(n));
+        for (int i = 0; i < n; ++i) {
+            f[i] = 0.1f + 0.9f * float(i) / float(n);  // lane-distinct, some above 0.25 / 0.5 / 0.75
+            u[i] = 0xFFFFFFFFu - cpu::u32(i) * 0x10001u;  // above 2^31: the unsigned conversion
+        }
+        table.dialect_double_probe(f.data(), u.data(), d.data(), g.data(), v.data());
+        bool any_above = false;
+        for (int i = 0; i < n; ++i) any_above |= double(f[i]) > 0.75;
+        for (int i = 0; i < n; ++i) {
+            const double x = f[i];
+            EXPECT_EQ(d[i], x) << isa << " lane " << i;
+            EXPECT_EQ(d[n + i], double(u[i])) << isa << " lane " << i;
+            EXPECT_EQ(d[2 * n + i], (x * 3.0 - 1.0) / 7.0) << isa << " lane " << i;
+            EXPECT_EQ(g[i], float(x * 3.0)) << isa << " lane " << i;
+            EXPECT_EQ(g[n + i], x > 0.5 ? 1.0f : 0.0f) << isa << " lane " << i;
+            EXPECT_EQ(g[2 * n + i], f[i] > 0.25f ? 1.0f : 0.0f) << isa << " lane " << i;
+            EXPECT_EQ(g[3 * n + i], any_above ? 1.0f : 0.0f) << isa << " lane " << i;
+            EXPECT_EQ(v[i], u[i] / 2u) << isa << " lane " << i;
+        }
+    }
+}
+
+// pn_ugather_pair (kernels/dialect.h) on every CPU binding: lane order across
+// the two 64-bit gathers of a strip, odd (not 8-byte aligned) indices.
+TEST(DialectGatherPair, AdjacentElementsPerLaneOnEveryCpuBinding)
+{
+    std::vector<cpu::u32> table(1000);
+    for (std::size_t i = 0; i < table.size(); ++i) table[i] = cpu::u32(0x9E3779B9u * (i + 1));
+    for (const std::string& isa : cpu_tables()) {
+        const cpu::CpuKernels& t = cpu::kernels_for(isa);
+        const int n = t.lanes;
+        std::vector<int> index(n);
+        std::vector<cpu::u32> first(n), second(n);
+        for (int i = 0; i < n; ++i) index[i] = (i * 37 + 11) % 900;  // odd and even, out of order
+        t.dialect_gather_pair_probe(table.data(), index.data(), first.data(), second.data());
+        for (int i = 0; i < n; ++i) {
+            EXPECT_EQ(first[i], table[index[i]]) << isa << " lane " << i;
+            EXPECT_EQ(second[i], table[index[i] + 1]) << isa << " lane " << i;
+        }
     }
 }
 

@@ -29,20 +29,19 @@ struct Moments {
 // E[z], E[z^2] over [x0, x1) x [y0, y1) (fractional, inside the map), each
 // texel weighted by the area of it the window covers. The table's bilinear
 // interpolation at fractional corners (kernels/moment_table.h) is the integral
-// of the piecewise-constant map, so these are the same weights. Exact tables:
-// of the quantized moments as decoded (q / 65535, m2 65536 / 65535^2).
+// of the piecewise-constant map, so these are the same weights. Both tables:
+// of the float32 depths (an exact limb table rounds z, z^2 to 2^-33).
 Moments covered_moments(const Image& depth, Precision precision, double x0, double x1, double y0, double y1)
 {
+    (void)precision;
     double s1 = 0.0, s2 = 0.0;
     for (int y = int(std::floor(y0)); y < int(std::ceil(y1)); ++y)
         for (int x = int(std::floor(x0)); x < int(std::ceil(x1)); ++x) {
             const double weight = (std::min(x1, x + 1.0) - std::max(x0, double(x))) *
                                   (std::min(y1, y + 1.0) - std::max(y0, double(y)));
             const float z = depth.at(0, x, y);
-            const double m1 = precision == Precision::Float ? z : testing::exact_moment(z, 1) / 65535.0;
-            const double m2 = precision == Precision::Float
-                                  ? double(z) * z
-                                  : testing::exact_moment(z, 2) * 65536.0 / (65535.0 * 65535.0);
+            const double m1 = z;
+            const double m2 = double(z) * z;
             s1 += weight * m1;
             s2 += weight * m2;
         }

@@ -1,6 +1,6 @@
 // The demo's method list. Settings sweep the parameter that trades time or
 // blur for error: the window radius of VSM, the light size of VSSM (around the
-// scene's own, from reference::light_size), the table precision.
+// scene's own, from reference::light_size).
 #include "demo_methods.h"
 
 #include <algorithm>
@@ -34,11 +34,6 @@ DemoMethod vsm_method()
                                   const MomentTable table = build_moment_table(ctx, f.shadow_map);
                                   return vsm(ctx, table, f.receivers.light_uvz, VsmOptions{radius});
                               }});
-    // The float table on the same windows: precision loss on large maps.
-    m.settings.push_back({"r=3 float", [](Context& ctx, const DemoFrame& f) {
-                              const MomentTable table = build_moment_table(ctx, f.shadow_map, 2, Precision::Float);
-                              return vsm(ctx, table, f.receivers.light_uvz, VsmOptions{3});
-                          }});
     return m;
 }
 
@@ -58,9 +53,9 @@ DemoMethod vssm_method(const reference::Scene& scene, int map_size)
     return m;
 }
 
-// Moment shadow maps on the exact 16-bit table. The storage-derived depth
-// bias leaves acne on sloped receivers; 3e-4 (about 20 16-bit depth steps)
-// removes it on the reference scenes (docs/moments.md).
+// Moment shadow maps on the exact limb table. The default depth bias leaves
+// acne on sloped receivers; 3e-4 (about 20 16-bit depth steps) removes it on
+// the reference scenes (docs/moments.md).
 constexpr float kDemoMsmDepthBias = 3e-4f;
 
 DemoMethod msm_method()
@@ -90,7 +85,7 @@ DemoMethod msm_soft_method(const reference::Scene& scene, int map_size)
     return m;
 }
 
-// EVSM with the 16-bit exact table's exponents; the sweep is the radius and
+// EVSM with the exact table's default exponents; the sweep is the radius and
 // the warp count (EVSM2: positive warp only; EVSM4: both).
 DemoMethod evsm_method(int channels)
 {

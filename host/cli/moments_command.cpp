@@ -54,17 +54,14 @@ void parse_exponents(const Args& args, const std::string& method, EvsmWarp& warp
     warp.negative = exponent_value(text->substr(comma + 1), *text);
 }
 
-Quantization quantization_option(const Args& args, Precision precision)
+// No option: the exact default. "16": MSM's optimized 16-bit storage (opt-in).
+Quantization quantization_option(const Args& args, const std::string& method)
 {
-    // Each table's natural storage: exact tables sum 16-bit steps, float tables floats.
-    const std::string fallback = precision == Precision::Exact ? "16" : "32";
-    const std::string bits = args.text("--quantize", fallback);
-    if (bits != "16" && bits != "32") throw UsageError{"option --quantize: '" + bits + "' is not 16 or 32"};
-    const Quantization q = parse_quantization(bits);
-    if (q == Quantization::Bits32 && precision == Precision::Exact)
-        throw UsageError{"option --quantize: 32-bit floats cannot be summed exactly; use --precision float with "
-                         "--quantize 32, or --quantize 16"};
-    return q;
+    const auto bits = args.get("--quantize");
+    if (!bits) return Quantization::None;
+    if (*bits != "16") throw UsageError{"option --quantize: '" + *bits + "' is not 16 (the only opt-in storage)"};
+    if (is_evsm(method)) throw UsageError{"option --quantize: applies to msm and msm-soft only"};
+    return Quantization::Bits16;
 }
 
 }  // namespace
@@ -74,12 +71,11 @@ bool is_moment_method(const std::string& method)
     return method == "msm" || method == "msm-soft" || is_evsm(method);
 }
 
-MomentShadeSettings parse_moment_settings(const std::string& method, const Args& args, Precision precision)
+MomentShadeSettings parse_moment_settings(const std::string& method, const Args& args)
 {
     MomentShadeSettings s;
     s.method = method;
-    s.precision = precision;
-    s.quantization = quantization_option(args, precision);
+    s.quantization = quantization_option(args, method);
     const bool msm_family = !is_evsm(method);
     // The shared options a method does not read are ignored, as vsm and vssm
     // do; the family's own options are rejected where they mean nothing.
@@ -107,10 +103,10 @@ MomentShadeSettings parse_moment_settings(const std::string& method, const Args&
 Image shade_moments(Context& context, const MomentShadeSettings& s, const Image& map, const Image& receivers)
 {
     if (is_evsm(s.method)) {
-        const EvsmTable table = build_evsm_table(context, map, s.warp, s.precision);
+        const EvsmTable table = build_evsm_table(context, map, s.warp);
         return evsm(context, table, receivers, s.evsm);
     }
-    const MsmTable table = build_msm_table(context, map, s.quantization, s.precision);
+    const MsmTable table = build_msm_table(context, map, s.quantization);
     return s.method == "msm" ? msm(context, table, receivers, s.msm) : msm_soft(context, table, receivers, s.soft);
 }
 

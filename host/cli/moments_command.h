@@ -20,16 +20,15 @@ bool is_moment_method(const std::string& method);
 
 struct MomentShadeSettings {
     std::string method;
-    Quantization quantization = Quantization::Bits16;
-    Precision precision = Precision::Exact;
+    Quantization quantization = Quantization::None;
     MsmOptions msm;
     MsmSoftOptions soft;
     EvsmWarp warp;
     EvsmOptions evsm;
 };
 
-// Throws UsageError naming the option. `precision` is --precision's value.
-MomentShadeSettings parse_moment_settings(const std::string& method, const Args& args, Precision precision);
+// Throws UsageError naming the option.
+MomentShadeSettings parse_moment_settings(const std::string& method, const Args& args);
 
 // Builds the method's table from `map` and shades `receivers`.
 Image shade_moments(Context& context, const MomentShadeSettings& settings, const Image& map, const Image& receivers);

@@ -27,20 +27,23 @@ const char* kShadeHelp =
     "  SM.exr: float channel Z, light depth in [0, 1]; RX.exr: float channels u, v, z;\n"
     "  OUT.exr: float channel Y, visibility in [0, 1] on the receivers' grid.\n"
     "options:\n"
-    "  --radius R         vsm box radius in texels, window (2R+1)^2 (default 2; exact tables: R <= 127)\n"
+    "  --radius R         vsm box radius in texels, window (2R+1)^2 (default 2, at most 127)\n"
     "  --min-variance V   variance floor in depth^2 (default 2e-5), >= 0\n"
     "  --bleed B          light-bleeding reduction in [0, 1) (default 0 = off)\n"
     "  --light-size L     vssm: light width in texture units at the near plane (default 0.02), > 0\n"
-    "  --precision P      exact (default: 16-bit fixed point, exact window sums) or float\n"
-    "  --quantize B       msm*, evsm*: bits per stored value: 16 (default with exact; MSM: the I3D 2015\n"
-    "                     optimized quantization) or 32 (floats; default with --precision float)\n"
+    "  Every method computes its own mathematics on the float32 depths (exact window sums, moments in\n"
+    "  double): within 2e-4 (vsm, vssm, evsm*) / 1e-3 (msm*) of its float64 evaluation (docs/moments.md).\n"
+    "  --quantize 16      msm, msm-soft: store the I3D 2015 optimized 16-bit quantization (16 B/texel\n"
+    "                     instead of 48); faithful to its dequantized moments, but the quantization\n"
+    "                     itself moves visibility: worst 0.56, p99 up to 0.017, up to 5% of receivers\n"
+    "                     beyond 1e-2 against the default (docs/moments.md, \"16-bit quantization\")\n"
     "  --moment-bias A    msm, msm-soft: share of each window moved to depths 0 and 1, in [0, 1) (6e-5)\n"
     "  --depth-bias D     msm*, evsm*: subtracted from receiver depth, in [0, 1); msm default: two 16-bit\n"
-    "                     depth steps (3.05e-5), 1.5e-5 with --quantize 32; sloped receivers need about\n"
-    "                     half a texel's depth change more; evsm default 0\n"
-    "  --exponents P,N    evsm4 warp exponents (evsm2: P), at most 5.545 with --quantize 16, 42 with 32\n"
-    "                     (defaults 5.545,5.545 and 10,5). --radius, --min-variance and --bleed apply to\n"
-    "                     evsm2/evsm4 too, --radius to msm, --light-size to msm-soft\n"
+    "                     depth steps (3.05e-5); sloped receivers need about half a texel's depth change\n"
+    "                     more; evsm default 0\n"
+    "  --exponents P,N    evsm4 warp exponents (evsm2: P), each in (0, 10] (defaults 10,5; above 10 the\n"
+    "                     exact 48-bit storage could not keep 2e-4). --radius, --min-variance and --bleed\n"
+    "                     apply to evsm2/evsm4 too, --radius to msm, --light-size to msm-soft\n"
     "  --backend B        auto (default), simd, opencl or scalar\n";
 
 // Names the file, the channel and the first bad pixel.
@@ -93,7 +96,7 @@ int shade_command(const std::vector<std::string>& argv)
 {
     const Args args(argv,
                     {"--method", "--shadow-map", "--receivers", "--out", "--backend", "--radius", "--min-variance",
-                     "--bleed", "--light-size", "--precision", kMomentOptionNames[0], kMomentOptionNames[1],
+                     "--bleed", "--light-size", kMomentOptionNames[0], kMomentOptionNames[1],
                      kMomentOptionNames[2], kMomentOptionNames[3]},
                     {"--help"});
     if (args.flag("--help")) {
@@ -110,16 +113,14 @@ int shade_command(const std::vector<std::string>& argv)
     const float bleed = args.number("--bleed", 0.0f);
     const float light_size = args.number("--light-size", VssmOptions{}.light_size);
     check_options(method, radius, min_variance, bleed, light_size);
-    Precision precision;
     Backend backend;
     try {
-        precision = parse_precision(args.text("--precision", "exact"));
         backend = parse_backend(args.text("--backend", "auto"));
     } catch (const Error& e) {
         throw UsageError{std::string(e.what())};
     }
     std::optional<MomentShadeSettings> moments;
-    if (is_moment_method(method)) moments = parse_moment_settings(method, args, precision);
+    if (is_moment_method(method)) moments = parse_moment_settings(method, args);
     else if (args.get("--moment-bias") || args.get("--depth-bias") || args.get("--quantize") || args.get("--exponents"))
         throw UsageError{"options --moment-bias, --depth-bias, --quantize and --exponents apply to msm, msm-soft, "
                          "evsm2 and evsm4"};
@@ -132,7 +133,7 @@ int shade_command(const std::vector<std::string>& argv)
         write_exr(out_path, shade_moments(context, *moments, map, receivers), {"Y"});
         return 0;
     }
-    const MomentTable table = build_moment_table(context, map, 2, precision);
+    const MomentTable table = build_moment_table(context, map, 2);
     const Image visibility = method == "vsm" ? vsm(context, table, receivers, VsmOptions{radius, min_variance, bleed})
                                              : vssm(context, table, receivers, VssmOptions{light_size, min_variance, bleed});
     write_exr(out_path, visibility, {"Y"});

@@ -48,7 +48,7 @@ ChebyshevParams base_params(const MomentTable& table, const Image& receivers, co
     p.out = detail::dims_of(out);
     p.min_variance = min_variance;
     p.bleed = bleed;
-    p.exact_scale = 1.0f / 65535.0f;
+    p.limbs = table.limbs();
     return p;
 }
 

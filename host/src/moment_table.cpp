@@ -24,27 +24,49 @@ constexpr std::size_t kLead = 1024;
 // Both precisions store 4-byte elements (float or uint32).
 constexpr std::size_t kElementSize = 4;
 
-void check_rectangle(const MomentTable& t, int k, int x0, int x1, int y0, int y1)
+void check_rectangle(const MomentTable& t, int k, int count, int x0, int x1, int y0, int y1)
 {
     require(!t.empty(), "MomentTable::box_sum", "the table is empty");
-    require(k >= 1 && k <= t.moments(), "MomentTable::box_sum",
-            "moment " + std::to_string(k) + " is not in [1, " + std::to_string(t.moments()) + "]");
+    require(k >= 1 && k <= count, "MomentTable::box_sum",
+            "moment " + std::to_string(k) + " is not in [1, " + std::to_string(count) + "]");
     require(0 <= x0 && x0 < x1 && x1 <= t.width() && 0 <= y0 && y0 < y1 && y1 <= t.height(),
             "MomentTable::box_sum", "rectangle [" + std::to_string(x0) + ", " + std::to_string(x1) + ") x [" +
                                         std::to_string(y0) + ", " + std::to_string(y1) +
                                         ") is empty or outside the map");
 }
 
+// Two zero elements after every row: the pair planes of a 3-limb table read
+// the pair before their origin (corner (0, 0)), which is the last two
+// elements of the limb-2 plane before them (kernels/moment_table.h, layout).
+int table_pitch(int width) { return padded_pitch(width + 1); }
+
+// Where plane `plane` (0-based: value plane / limbs, limb plane % limbs) of a
+// table lives: the first element of its plane group and the elements per
+// entry of the group (2 for a limb table's pair plane of limbs 0 and 1,
+// interleaved; else 1), as kernels/moment_table.h lays them out.
+struct PlaneSlot {
+    std::size_t group;  // in plane pitches from the origin
+    int stride, lane;
+};
+PlaneSlot plane_slot(int plane, int limbs)
+{
+    const int k = plane / limbs, l = plane % limbs;
+    if (limbs == 1) return {std::size_t(plane), 1, 0};
+    if (l < 2) return {std::size_t(k * limbs), 2, l};
+    return {std::size_t(k * limbs + 2), 1, 0};
+}
+
 }  // namespace
 
-MomentTable::MomentTable(int width, int height, int moments, Precision precision)
-    : width_(width), height_(height), pitch_(padded_pitch(width)),
-      plane_pitch_(std::size_t(padded_pitch(width)) * std::size_t(height + 1)), moments_(moments),
-      precision_(precision)
+MomentTable::MomentTable(int width, int height, int moments, Precision precision, int limbs, TableValues values)
+    : width_(width), height_(height), pitch_(table_pitch(width)),
+      plane_pitch_(std::size_t(table_pitch(width)) * std::size_t(height + 1)), moments_(moments),
+      limbs_(precision == Precision::Exact ? limbs : 1), precision_(precision), values_(values)
 {
     require(width > 0 && height > 0, "MomentTable", "the map is empty");
     require(moments == 2 || moments == 4, "MomentTable",
             "moments must be 2 or 4 (got " + std::to_string(moments) + ")");
+    require(limbs >= 1 && limbs <= 3, "MomentTable", "limbs must be 1, 2 or 3 (got " + std::to_string(limbs) + ")");
     storage_ = AlignedBuffer(storage_elements() * kElementSize, AlignedBuffer::Uninitialized{});
     zero_borders();
 }
@@ -53,22 +75,26 @@ MomentTable::MomentTable(int width, int height, int moments, Precision precision
 // zeros the corner queries read (the lead before the origin, each plane's
 // zero row, the padding after every row, which is the next row's column -1)
 // are set here, in parallel, so that the fresh pages fault on every thread.
+// A pair plane's rows hold 2 pitches of elements, its texels 2 W of them.
 void MomentTable::zero_borders()
 {
     std::byte* base = storage_.data();
     std::memset(base, 0, kLead * kElementSize);
-    const std::size_t rows = std::size_t(height_ + 1) * std::size_t(moments_);
+    const std::size_t rows = std::size_t(height_ + 1) * std::size_t(planes());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 64), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t row = r.begin(); row < r.end(); ++row) {
-            std::byte* start = base + (kLead + row * std::size_t(pitch_)) * kElementSize;
-            const bool zero_row = row % std::size_t(height_ + 1) == 0;
-            const std::size_t from = zero_row ? 0 : std::size_t(width_);
-            std::memset(start + from * kElementSize, 0, (std::size_t(pitch_) - from) * kElementSize);
+            const std::size_t plane = row / std::size_t(height_ + 1), y = row % std::size_t(height_ + 1);
+            const PlaneSlot slot = plane_slot(int(plane), limbs_);
+            if (slot.lane != 0) continue;  // the pair plane's rows are zeroed with limb 0
+            const std::size_t row_elements = std::size_t(slot.stride) * std::size_t(pitch_);
+            std::byte* start = base + (kLead + slot.group * plane_pitch_ + y * row_elements) * kElementSize;
+            const std::size_t from = y == 0 ? 0 : std::size_t(slot.stride) * std::size_t(width_);
+            std::memset(start + from * kElementSize, 0, (row_elements - from) * kElementSize);
         }
     });
 }
 
-std::size_t MomentTable::storage_elements() const noexcept { return kLead + plane_pitch_ * std::size_t(moments_); }
+std::size_t MomentTable::storage_elements() const noexcept { return kLead + plane_pitch_ * std::size_t(planes()); }
 
 std::size_t MomentTable::origin_offset_bytes() const noexcept { return kLead * kElementSize; }
 
@@ -83,23 +109,25 @@ const std::uint32_t* MomentTable::exact_origin() const noexcept
     return reinterpret_cast<const std::uint32_t*>(storage_.data()) + kLead;
 }
 
-std::uint32_t MomentTable::exact_box_sum(int k, int x0, int x1, int y0, int y1) const
+std::uint32_t MomentTable::exact_box_sum(int plane_index, int x0, int x1, int y0, int y1) const
 {
-    check_rectangle(*this, k, x0, x1, y0, y1);
+    check_rectangle(*this, plane_index, planes(), x0, x1, y0, y1);
     require(precision_ == Precision::Exact, "MomentTable::exact_box_sum", "the table is not exact");
-    const std::uint32_t* plane = exact_origin() + plane_pitch_ * std::size_t(k - 1);
-    auto corner = [&](int x, int y) { return plane[std::ptrdiff_t(y) * pitch_ + x - 1]; };
+    const PlaneSlot slot = plane_slot(plane_index - 1, limbs_);
+    const std::uint32_t* plane = exact_origin() + plane_pitch_ * slot.group + slot.lane;
+    auto corner = [&](int x, int y) { return plane[(std::ptrdiff_t(y) * pitch_ + x - 1) * slot.stride]; };
     return (corner(x1, y1) - corner(x0, y1)) - (corner(x1, y0) - corner(x0, y0));
 }
 
 double MomentTable::box_sum(int k, int x0, int x1, int y0, int y1) const
 {
-    check_rectangle(*this, k, x0, x1, y0, y1);
+    check_rectangle(*this, k, moments_, x0, x1, y0, y1);
     if (precision_ == Precision::Exact) {
-        // Same decoding as sat_exact_moment_scale() in kernels/moment_table.h.
-        double scale = 1.0 / 65535.0;
-        for (int i = 1; i < k; ++i) scale *= 65536.0 / 65535.0;
-        return double(exact_box_sum(k, x0, x1, y0, y1)) * scale;
+        // Same decoding as sat_limb_box_sum() in kernels/moment_table.h.
+        double unit = 1.0 / 65536.0, sum = 0.0;
+        for (int l = 0; l < limbs_; ++l, unit /= 65536.0)
+            sum += double(exact_box_sum((k - 1) * limbs_ + l + 1, x0, x1, y0, y1)) * unit;
+        return sum;
     }
     const float* plane = float_origin() + plane_pitch_ * std::size_t(k - 1);
     auto corner = [&](int x, int y) { return double(plane[std::ptrdiff_t(y) * pitch_ + x - 1]); };

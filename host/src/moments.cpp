@@ -44,14 +44,16 @@ void report_bad_depth(const std::string& op, const Image& depth)
 void check_storage(const std::string& op, Quantization quantization, Precision precision)
 {
     require(!(quantization == Quantization::Bits32 && precision == Precision::Exact), op,
-            "quantization 32 keeps 32-bit floats per texel, which an exact table (sums of 16-bit steps) cannot "
-            "hold; use precision float with it, or quantization 16");
+            "quantization 32 keeps 32-bit floats per texel, which an exact table cannot hold; use precision "
+            "float with it, or the default (no quantization: exact limb tables)");
+    require(!(quantization == Quantization::None && precision == Precision::Float), op,
+            "precision float sums floats: give quantization 32 with it, or use the default exact precision");
 }
 
 MomentTable build_encoded(Context& context, const std::string& op, const Image& depth, EncodedSatParams p,
                           Precision precision)
 {
-    MomentTable table(depth.width(), depth.height(), p.channels, precision);
+    MomentTable table(depth.width(), depth.height(), p.channels, precision, 1);
     p.depth = detail::dims_of(depth);
     p.table = detail::dims_of(table);
     std::vector<int> bad_rows(std::size_t(depth.height()), 0);
@@ -60,12 +62,16 @@ MomentTable build_encoded(Context& context, const std::string& op, const Image& 
     return table;
 }
 
-// Bits32: the float table of z..z^4 that VSM's family builds; its errors are
-// reported as this operation's.
-MomentTable power_moment_table(Context& context, const std::string& op, const Image& depth)
+// A table built by the moment table's build (kernels/moment_table.h): the
+// float table of z..z^4 (Bits32) or an exact limb table (None: z..z^4 or
+// EVSM's warps); its errors are reported as this operation's.
+MomentTable moment_table_as(Context& context, const std::string& op, const Image& depth, int moments,
+                            Precision precision, TableValues values = {})
 {
     try {
-        return build_moment_table(context, depth, 4, Precision::Float);
+        MomentTable table(depth.width(), depth.height(), moments, precision, kMomentLimbs, values);
+        build_moment_table(context, depth, table);
+        return table;
     } catch (const Error& e) {
         const std::string text = e.what();
         const std::size_t prefix = e.operation().size() + 2;  // "operation: "
@@ -73,7 +79,11 @@ MomentTable power_moment_table(Context& context, const std::string& op, const Im
     }
 }
 
-float max_exponent(Quantization q) { return q == Quantization::Bits16 ? kEvsmMaxExponent16 : kEvsmMaxExponent32; }
+float max_exponent(Quantization q)
+{
+    if (q == Quantization::None) return kEvsmMaxExponentExact;
+    return q == Quantization::Bits16 ? kEvsmMaxExponent16 : kEvsmMaxExponent32;
+}
 
 float checked_exponent(const std::string& op, std::optional<float> value, Quantization q, bool positive)
 {
@@ -82,9 +92,11 @@ float checked_exponent(const std::string& op, std::optional<float> value, Quanti
     require(std::isfinite(c) && c > 0.0f, op, name + " must be > 0 (got " + number(c) + ")");
     require(c <= max_exponent(q), op,
             name + " " + number(c) + " exceeds " + number(max_exponent(q)) + ", the largest the " +
-                to_string(q) + "-bit storage holds (its squared warp e^(-2c) would " +
-                (q == Quantization::Bits16 ? "round to 0 in 16-bit steps)" : "leave the normal float range)") +
-                "; use a smaller exponent" + (q == Quantization::Bits16 ? " or quantization 32" : ""));
+                (q == Quantization::None ? "exact 48-bit storage keeps within 2e-4 of the method (docs/moments.md)"
+                 : q == Quantization::Bits16 ? "16-bit storage holds (its squared warp e^(-2c) would round to 0)"
+                                             : "float storage holds (its squared warp e^(-2c) would leave the normal "
+                                               "float range)") +
+                "; use a smaller exponent");
     return c;
 }
 
@@ -132,15 +144,20 @@ MomentParams base_params(const MomentTable& sums, const Image& receivers, const 
     p.table = detail::dims_of(sums);
     p.receivers = detail::dims_of(receivers);
     p.out = detail::dims_of(out);
+    p.limbs = sums.limbs();
     return p;
 }
 
-// The variance a window's decoded moments show when it holds one depth:
-// Bits16: 1.02e-5 at worst over all 65536 depths (the optimized quantization's
-// rounding, decoded in float), with a 1.5x margin: 2^-16 (and 4 x 2^-16 is the
-// default moment bias); Bits32: a few roundings of E[z^2] <= 1 in float,
-// 2^-22 (float tables raise it where their entries are large, kernels/msm.h).
-float noise_variance(Quantization q) { return q == Quantization::Bits16 ? 0x1p-16f : 0x1p-22f; }
+// The Hankel pivot at or below which the matrix is singular (kernels/msm.h):
+// None: sixteen steps of the 3-limb table's rounding (2^-49), 2^-45; Bits16:
+// 0, the dequantized means are exact (the kernel adds double rounding);
+// Bits32: a few roundings of E[z^2] <= 1 in float, 2^-22 (float tables raise
+// it where their entries are large).
+float pivot_floor(Quantization q)
+{
+    if (q == Quantization::None) return 0x1p-45f;
+    return q == Quantization::Bits16 ? 0.0f : 0x1p-22f;
+}
 
 void set_msm_biases(MomentParams& p, const std::string& op, Quantization q, std::optional<float> moment_bias,
                     std::optional<float> depth_bias)
@@ -148,7 +165,7 @@ void set_msm_biases(MomentParams& p, const std::string& op, Quantization q, std:
     p.storage = q == Quantization::Bits16 ? PN_MOMENTS_OPTIMIZED16 : PN_MOMENTS_POWER;
     p.moment_bias = checked_bias(op, "moment-bias", moment_bias.value_or(default_moment_bias(q)));
     p.depth_bias = checked_bias(op, "depth-bias", depth_bias.value_or(default_depth_bias(q)));
-    p.noise_variance = noise_variance(q);
+    p.pivot_floor = pivot_floor(q);
 }
 
 void run_checked(Context& context, BackendImpl::MomentMethod method, const std::string& op, const MomentTable& sums,
@@ -163,23 +180,38 @@ void run_checked(Context& context, BackendImpl::MomentMethod method, const std::
 
 // ---- defaults (docs/moments.md derives them) ------------------------------------
 
-float default_moment_bias(Quantization q) { return q == Quantization::Bits16 ? kMsmMomentBias16 : kMsmMomentBias32; }
+float default_moment_bias(Quantization q)
+{
+    if (q == Quantization::None) return kMsmMomentBiasExact;
+    return q == Quantization::Bits16 ? kMsmMomentBias16 : kMsmMomentBias32;
+}
 
-float default_depth_bias(Quantization q) { return q == Quantization::Bits16 ? kMsmDepthBias16 : kMsmDepthBias32; }
+float default_depth_bias(Quantization q)
+{
+    if (q == Quantization::None) return kMsmDepthBiasExact;
+    return q == Quantization::Bits16 ? kMsmDepthBias16 : kMsmDepthBias32;
+}
 
 float default_evsm_exponent(Quantization q, bool positive)
 {
     if (q == Quantization::Bits16) return kEvsmMaxExponent16;
-    return positive ? kEvsmPositiveExponent32 : kEvsmNegativeExponent32;
+    if (q == Quantization::Bits32) return positive ? kEvsmPositiveExponent32 : kEvsmNegativeExponent32;
+    return positive ? kEvsmPositiveExponentExact : kEvsmNegativeExponentExact;
 }
 
-std::string to_string(Quantization q) { return q == Quantization::Bits16 ? "16" : "32"; }
+std::string to_string(Quantization q)
+{
+    if (q == Quantization::None) return "none";
+    return q == Quantization::Bits16 ? "16" : "32";
+}
 
 Quantization parse_quantization(const std::string& bits)
 {
+    if (bits == "none") return Quantization::None;
     if (bits == "16") return Quantization::Bits16;
     if (bits == "32") return Quantization::Bits32;
-    throw Error(ErrorCategory::InvalidArgument, "quantize", "'" + bits + "' is not 16 or 32 (bits per stored value)");
+    throw Error(ErrorCategory::InvalidArgument, "quantize",
+                "'" + bits + "' is not none, 16 or 32 (bits per stored value)");
 }
 
 // ---- tables ------------------------------------------------------------------
@@ -189,7 +221,7 @@ MsmTable build_msm_table(Context& context, const Image& depth, Quantization quan
     const std::string op = "build_msm_table";
     check_depth_map(op, depth);
     check_storage(op, quantization, precision);
-    if (quantization == Quantization::Bits32) return {power_moment_table(context, op, depth), quantization};
+    if (quantization != Quantization::Bits16) return {moment_table_as(context, op, depth, 4, precision), quantization};
     EncodedSatParams p{};
     p.channels = 4;
     p.encoding = PN_ENCODE_MSM;
@@ -210,6 +242,11 @@ EvsmTable build_evsm_table(Context& context, const Image& depth, const EvsmWarp&
     table.quantization = warp.quantization;
     table.positive = checked_exponent(op, warp.positive, warp.quantization, true);
     table.negative = warp.channels == 4 ? checked_exponent(op, warp.negative, warp.quantization, false) : 0.0f;
+    if (warp.quantization == Quantization::None) {
+        table.sums = moment_table_as(context, op, depth, warp.channels, precision,
+                                     TableValues{PN_TABLE_EVSM, table.positive, table.negative});
+        return table;
+    }
     EncodedSatParams p{};
     p.channels = warp.channels;
     p.encoding = PN_ENCODE_EVSM;

@@ -36,14 +36,21 @@ Image receivers_at_depth(int map_w, int map_h, float z)
     return rx;
 }
 
-std::uint32_t exact_moment(float z, int k)
+std::uint32_t exact_limb(float z, int k, int limbs, int l)
 {
-    // Same operations as sat_block_exact (kernels/moment_table.h).
-    const float scaled = z * 65535.0f + 0.5f;
-    const std::uint32_t q = std::uint32_t(std::floor(scaled));
-    std::uint32_t m = q;
-    for (int i = 1; i < k; ++i) m = (m * q + 32768u) >> 16;
-    return m;
+    // Same operations as sat_texel_values and sat_limbs (kernels/moment_table.h):
+    // z^k by repeated double products, rounded to 16 limbs bits.
+    double v = z;
+    for (int i = 1; i < k; ++i) v *= double(z);
+    double rest = v + std::ldexp(0.5, -16 * limbs);
+    std::uint32_t limb = 0;
+    for (int i = 0; i <= l; ++i) {
+        rest *= 65536.0;
+        const double whole = std::floor(rest);
+        limb = std::uint32_t(whole);
+        rest -= whole;
+    }
+    return limb;
 }
 
 double brute_sum(const Image& depth, int k, int x0, int x1, int y0, int y1)
@@ -54,11 +61,12 @@ double brute_sum(const Image& depth, int k, int x0, int x1, int y0, int y1)
     return sum;
 }
 
-std::uint32_t brute_exact_sum(const Image& depth, int k, int x0, int x1, int y0, int y1)
+std::uint32_t brute_exact_sum(const Image& depth, int plane, int limbs, int x0, int x1, int y0, int y1)
 {
+    const int k = (plane - 1) / limbs + 1, l = (plane - 1) % limbs;
     std::uint64_t sum = 0;
     for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) sum += exact_moment(depth.at(0, x, y), k);
+        for (int x = x0; x < x1; ++x) sum += exact_limb(depth.at(0, x, y), k, limbs, l);
     return std::uint32_t(sum);
 }
 

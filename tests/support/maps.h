@@ -20,11 +20,13 @@ Image receivers_on_texels(int width, int height, int map_w, int map_h, float z_l
 // One receiver per texel centre of the map, all at depth z.
 Image receivers_at_depth(int map_w, int map_h, float z);
 
-// The exact table's quantized moment k (1-based) of depth z, as the kernel computes it.
-std::uint32_t exact_moment(float z, int k);
+// Limb l (0-based, most significant first) of value k = z^k (1-based) of an
+// exact limb table with `limbs` limbs per value, as the kernel computes it.
+std::uint32_t exact_limb(float z, int k, int limbs, int l);
 
 // Brute-force sums over texels [x0, x1) x [y0, y1).
 double brute_sum(const Image& depth, int k, int x0, int x1, int y0, int y1);
-std::uint32_t brute_exact_sum(const Image& depth, int k, int x0, int x1, int y0, int y1);
+// The wrapped sum of plane `plane` (1-based, as MomentTable::exact_box_sum).
+std::uint32_t brute_exact_sum(const Image& depth, int plane, int limbs, int x0, int x1, int y0, int y1);
 
 }  // namespace penumbra::testing

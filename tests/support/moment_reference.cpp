@@ -239,7 +239,7 @@ Moments4 table_moments(const MsmTable& table, int x0, int x1, int y0, int y1)
     const double area = double(x1 - x0) * (y1 - y0);
     std::array<double, 4> mean{};
     for (int k = 0; k < 4; ++k) {
-        if (table.sums.precision() == Precision::Exact)
+        if (table.quantization == Quantization::Bits16)
             mean[k] = double(table.sums.exact_box_sum(k + 1, x0, x1, y0, y1)) / 65535.0 / area;
         else
             mean[k] = table.sums.box_sum(k + 1, x0, x1, y0, y1) / area;

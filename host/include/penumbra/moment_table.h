@@ -4,11 +4,13 @@
 // per-moment inclusive sums, from which any rectangle's mean depth, mean square
 // depth (and, with 4 moments, the third and fourth moments) cost four reads.
 //
-// Precision::Exact (the default) quantizes depth to 16 bits and sums in
-// wrapping uint32: every window of at most 65537 texels (255 x 255, radius
-// 127) has exact sums for maps of any size, 16384^2 included. Precision::Float
-// sums z^k in float: faster to use in float pipelines, but its error grows with
-// the map (docs/moment_table.md has the measured worst case).
+// Precision::Exact (the default) is a "limb" table (kernels/moment_table.h):
+// each value z^k of the float32 depth is rounded to 32 bits (2 limbs; 48 with
+// 3) and every 16-bit limb summed in its own wrapping uint32 plane, so every
+// window of at most 255 x 255 texels (radius 127) has sums exact to that
+// rounding (1.2e-10 with 2 limbs) for maps of any size, 16384^2 included.
+// Precision::Float sums z^k in float: its error grows with the map
+// (docs/moment_table.md has the measured worst case).
 #pragma once
 
 #include <cstdint>
@@ -20,18 +22,35 @@ namespace penumbra {
 
 enum class Precision { Exact, Float };
 
-inline constexpr int kExactMaxWindowArea = 65537;  // texels
-inline constexpr int kExactMaxRadius = 127;        // (2r + 1)^2 <= 65537
+inline constexpr int kExactMaxWindowArea = 65535;  // texels
+inline constexpr int kExactMaxRadius = 127;        // (2r + 1)^2 <= 65535
+// 16-bit limbs per value of an exact table: VSM's z, z^2 need 2 (docs/moment_table.md);
+// MSM's z..z^4 and EVSM's warps 3 (docs/moments.md).
+inline constexpr int kVsmLimbs = 2;
+inline constexpr int kMomentLimbs = 3;
+
+// What a table's values are (kernels/params.h, PN_TABLE_*): the powers z^k,
+// or EVSM's warps with these exponents.
+struct TableValues {
+    int kind = 0;  // PN_TABLE_POWERS (0) or PN_TABLE_EVSM (1)
+    float positive = 0.0f, negative = 0.0f;
+};
 
 class MomentTable {
 public:
     MomentTable() = default;
-    MomentTable(int width, int height, int moments, Precision precision);
+    // `limbs`: 16-bit limbs per value of an exact table (1 for the 16-bit
+    // optimized MSM table, whose values are 16-bit steps); float tables have 1.
+    MomentTable(int width, int height, int moments, Precision precision, int limbs = kVsmLimbs,
+                TableValues values = {});
 
     int width() const noexcept { return width_; }
     int height() const noexcept { return height_; }
     int moments() const noexcept { return moments_; }
     Precision precision() const noexcept { return precision_; }
+    int limbs() const noexcept { return limbs_; }
+    int planes() const noexcept { return moments_ * limbs_; }
+    const TableValues& values() const noexcept { return values_; }
     bool empty() const noexcept { return moments_ == 0; }
     // Elements between rows and between planes (kernels/params.h, SatParams).
     int pitch() const noexcept { return pitch_; }
@@ -51,8 +70,10 @@ public:
     // the units of z^k (exact tables decoded). For tests and for users who need
     // a few values; throws Error for an empty or out-of-range rectangle.
     double box_sum(int k, int x0, int x1, int y0, int y1) const;
-    // The raw wrapped integer sum of an exact table (no decoding).
-    std::uint32_t exact_box_sum(int k, int x0, int x1, int y0, int y1) const;
+    // The raw wrapped integer sum of plane `plane` of an exact table (no
+    // decoding); 1-based: value k (1-based) limb l (0-based, most significant
+    // first) is plane (k - 1) * limbs + l + 1.
+    std::uint32_t exact_box_sum(int plane, int x0, int x1, int y0, int y1) const;
 
 private:
     void zero_borders();
@@ -60,7 +81,9 @@ private:
     int width_ = 0, height_ = 0, pitch_ = 0;
     std::size_t plane_pitch_ = 0;
     int moments_ = 0;
+    int limbs_ = 1;
     Precision precision_ = Precision::Exact;
+    TableValues values_{};
     AlignedBuffer storage_;
 };
 

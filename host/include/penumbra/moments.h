@@ -9,14 +9,17 @@
 // receivers (3 channels: u, v in [0, 1], clamped into the map, and light
 // depth z) and return one channel of visibility in [0, 1], never NaN.
 //
-// Storage, two independent choices:
-//  - Quantization: what each texel stores before summation. Bits16: 16-bit
-//    steps of 1/65535 (MSM: of the paper's optimized transform of z..z^4;
-//    EVSM: of the warped values); Bits32: 32-bit floats (MSM: z..z^4).
-//  - Precision: how window sums are formed. Exact: wrapping uint32 sums of the
-//    16-bit steps, exact for windows up to 255 x 255 texels (Bits16 only);
-//    Float: float sums, any window, but their error grows with the map
-//    (docs/moment_table.md).
+// Storage:
+//  - Quantization::None (the default) with Precision::Exact: exact limb tables
+//    (kernels/moment_table.h) of the method's own values, z..z^4 (MSM) or the
+//    warps (EVSM), each rounded to 48 bits (3 limbs, error <= 1.8e-15): the
+//    methods compute their mathematics on the float32 depths
+//    (docs/moments.md: fidelity). Windows up to 255 x 255 texels.
+//  - Quantization::Bits16 (MSM only, opt-in): the I3D 2015 optimized 16-bit
+//    quantization, summed exactly; 16 B/texel instead of 48, at the price of
+//    its own quantization error (docs/moments.md).
+//  - Quantization::Bits32 with Precision::Float: float sums of floats (legacy;
+//    their error grows with the map, docs/moment_table.md).
 // Bad input throws penumbra::Error naming the parameter.
 #pragma once
 
@@ -28,7 +31,7 @@
 
 namespace penumbra {
 
-enum class Quantization { Bits16, Bits32 };
+enum class Quantization { None, Bits16, Bits32 };
 
 // --- MSM -----------------------------------------------------------------
 
@@ -56,20 +59,24 @@ inline constexpr float kMsmMomentBias32 = 6e-5f;
 // texel's depth change at the receiver (receiver-plane bias; 3e-4 on the
 // overlap scene at 512^2, docs/moments.md).
 inline constexpr float kMsmDepthBias16 = 2.0f / 65535.0f;
+// Quantization::None keeps the defaults of the former default storage (Bits16),
+// so that the same options mean the same method (docs/moments.md, "Biases").
+inline constexpr float kMsmMomentBiasExact = 6e-5f;
+inline constexpr float kMsmDepthBiasExact = 2.0f / 65535.0f;
 inline constexpr float kMsmDepthBias32 = 0x1p-16f;
 float default_moment_bias(Quantization quantization);
 float default_depth_bias(Quantization quantization);
 
 // Four moments per texel, summed.
 struct MsmTable {
-    MomentTable sums;  // 4 planes: the optimized channels (Bits16) or z..z^4 (Bits32)
-    Quantization quantization = Quantization::Bits16;
+    MomentTable sums;  // z..z^4 (None: 3 limbs each; Bits32: floats) or the optimized channels (Bits16)
+    Quantization quantization = Quantization::None;
 };
 
 // Throws Error for an empty or multi-channel map, depths outside [0, 1] or
 // non-finite, and Bits32 with Precision::Exact (an exact table holds 16-bit
 // values).
-MsmTable build_msm_table(Context& context, const Image& depth, Quantization quantization = Quantization::Bits16,
+MsmTable build_msm_table(Context& context, const Image& depth, Quantization quantization = Quantization::None,
                          Precision precision = Precision::Exact);
 
 struct MsmOptions {
@@ -98,6 +105,13 @@ void msm_soft(Context& context, const MsmTable& table, const Image& receivers, c
 // literature's 42 (e^{-2c} a normal float needs c <= 43.67).
 inline constexpr float kEvsmMaxExponent16 = 5.545177f;
 inline constexpr float kEvsmMaxExponent32 = 42.0f;
+// Quantization::None (exact 48-bit limb tables): the warped variance floor
+// min_variance (c w)^2 at the smallest warp e^-c must stay far above the
+// storage's 1.8e-15: the bound's error 1.8e-15 / (4 x 2e-5 c^2 e^-2c) is
+// below 2e-4 up to c = 10.2 at the default floor (docs/moments.md).
+inline constexpr float kEvsmMaxExponentExact = 10.0f;
+inline constexpr float kEvsmPositiveExponentExact = 10.0f;
+inline constexpr float kEvsmNegativeExponentExact = 5.0f;
 // Defaults. Bits16: the limit for both warps. Bits32 (float tables): a float
 // summed-area table loses the small warped values near the light as its sums
 // grow, so the limit is not the best choice: on the overlap scene (radius 2,
@@ -110,7 +124,7 @@ struct EvsmWarp {
     int channels = 4;                   // 2: positive warp only (EVSM2); 4: both (EVSM4)
     std::optional<float> positive{};    // c+ in (0, max]; unset: the default for the quantization
     std::optional<float> negative{};    // c- in (0, max]; unset: likewise (EVSM4 only)
-    Quantization quantization = Quantization::Bits16;
+    Quantization quantization = Quantization::None;  // None (exact) or Bits32 (float tables)
 };
 float default_evsm_exponent(Quantization quantization, bool positive);
 
@@ -118,7 +132,7 @@ struct EvsmTable {
     MomentTable sums;                   // `channels` planes: w+, w+^2 [, |w-|, w-^2]
     int channels = 4;
     float positive = 0.0f, negative = 0.0f;  // the exponents used
-    Quantization quantization = Quantization::Bits16;
+    Quantization quantization = Quantization::None;
 };
 
 EvsmTable build_evsm_table(Context& context, const Image& depth, const EvsmWarp& warp = {},
@@ -135,7 +149,7 @@ Image evsm(Context& context, const EvsmTable& table, const Image& receivers, con
 void evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options, Image& out);
 
 std::string to_string(Quantization quantization);
-// "16" or "32"; throws Error(InvalidArgument) otherwise.
+// "none", "16" or "32"; throws Error(InvalidArgument) otherwise.
 Quantization parse_quantization(const std::string& bits);
 
 }  // namespace penumbra
