@@ -336,8 +336,8 @@ void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::strin
     core.check(exr_get_chunk_count(core.get(), 0, &chunk_count), "its chunk count cannot be read");
     if (chunk_count < 0 || std::uint64_t(chunk_count) * 8 > file.size())
         throw Error(ErrorCategory::Io, operation,
-                    in_quotes(file.path()) + " declares " + std::to_string(chunk_count) + " chunks, whose offset table alone "
-                    "would not fit in its " + std::to_string(file.size()) + " bytes; the header is corrupt or the file truncated");
+                    in_quotes(file.path()) + " declares " + std::to_string(chunk_count) + " chunks, whose offset table alone its " +
+                        std::to_string(file.size()) + " bytes cannot hold; the header is corrupt or the file truncated");
     // Its tiled reader also keeps a buffer of a row of tiles (the window's width
     // times the tile height) and one tile: bound both by the image itself, plus
     // room for tiles larger than a small image.
