@@ -185,9 +185,25 @@ std::vector<Source> kernel_sources()
 }
 
 // Comments replaced by a space (string literals do not occur in descriptions).
+// A loop, not a regex: libstdc++'s regex recurses once per character of a
+// match, and a long block comment overflowed the stack under AddressSanitizer.
 std::string without_comments(const std::string& text)
 {
-    return std::regex_replace(text, std::regex(R"(/\*[\s\S]*?\*/|//[^\n]*)"), " ");
+    std::string code;
+    code.reserve(text.size());
+    for (std::size_t i = 0; i < text.size();) {
+        if (text.compare(i, 2, "/*") == 0) {
+            const std::size_t end = text.find("*/", i + 2);
+            i = end == std::string::npos ? text.size() : end + 2;
+            code += ' ';
+        } else if (text.compare(i, 2, "//") == 0) {
+            i = std::min(text.find('\n', i), text.size());
+            code += ' ';
+        } else {
+            code += text[i++];
+        }
+    }
+    return code;
 }
 
 // What a description must not say: the ISA, xsimd, OpenCL's own spellings, or
