@@ -507,7 +507,12 @@ def cases_signals(quick, rng):
     cases = []
     count = 4 if quick else 12
     for command in heavy:
-        for number in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL, signal.SIGHUP):
+        # SIGKILL can land between linking a run's temporaries and renaming them
+        # (docs/robustness.md): the full probe counts what it leaves; the quick
+        # one, a ctest, leaves SIGKILL out so that this window cannot fail CI at random.
+        signals = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP) if quick else \
+            (signal.SIGINT, signal.SIGTERM, signal.SIGKILL, signal.SIGHUP)
+        for number in signals:
             for _ in range(count):
                 cases.append(Case("signals during writes", command, expect=("signal", "ok"),
                                   send_signal=(number, rng.uniform(0.02, 1.2)), timeout=60))
