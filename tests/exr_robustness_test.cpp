@@ -156,6 +156,25 @@ TEST_F(ExrRobustness, FixedSizeAttributeWithAnotherDeclaredSizeIsRefused)
 // Found by exr_reader_fuzz: a scanline file whose header also carries a
 // `tiles` attribute has 0 scanlines per chunk for the core library (a division
 // by zero in the chunk walk).
+// Found by exr_reader_fuzz (a 2 KB DWAA file, 1.6 GB of line buffers): a
+// second dataWindow attribute. The core library, whose reading is checked,
+// and OpenEXR's C++ reader, which wins with the later value, saw different
+// windows; a header naming an attribute twice is now refused.
+TEST_F(ExrRobustness, AttributeNamedTwiceIsRefused)
+{
+    const std::string file = valid_file("twice.exr");
+    std::string bytes = bytes_of(file);
+    const std::string key("dataWindow\0box2i\0", 17);
+    const std::size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    const std::int32_t claim[5] = {16, 0, 0, 3604488, 11};  // size, then xMin yMin xMax yMax
+    std::string second = key;
+    second.append(reinterpret_cast<const char*>(claim), sizeof claim);
+    bytes.insert(at + key.size() + 4 + 16, second);  // right after the first one's value
+    put_bytes(file, bytes);
+    expect_refused(file, "'dataWindow' twice");
+}
+
 TEST_F(ExrRobustness, ScanlineFileWithATileDescriptionIsRefused)
 {
     const std::string file = valid_file("tiles.exr");
