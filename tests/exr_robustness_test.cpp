@@ -231,6 +231,36 @@ TEST_F(ExrRobustness, ZeroedOffsetTableIsRefused)
     expect_refused(file, "table.exr");
 }
 
+// OpenEXR 3.1's core cannot decode DWA, so for DWAA and DWAB only the chunk
+// table is checked by penumbra and the pixels come from the C++ reader: a chunk
+// that decompresses short (one 16x12 chunk under a 32x12 or a 16x20 window:
+// still one chunk of DWA's 32 scanlines, within the compression bound) must
+// still be a typed refusal, never padded pixels. Measured: OpenEXR's DWA
+// decompressor throws "Error uncompressing DWA data", which read_exr turns into
+// Error(Io) naming the file (the tool: exit 2, one line).
+TEST_F(ExrRobustness, DwaChunkThatDecompressesShortIsRefused)
+{
+    for (const Imf::Compression c : {Imf::DWAA_COMPRESSION, Imf::DWAB_COMPRESSION})
+    for (const auto& [x_max, y_max] : {std::pair{31, 11}, std::pair{15, 19}}) {
+        const std::string file = path("short-" + std::to_string(int(c)) + "-" + std::to_string(x_max) + ".exr");
+        Imf::Header header(16, 12);
+        header.compression() = c;
+        header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+        std::vector<float> values(16 * 12);
+        for (std::size_t i = 0; i < values.size(); ++i) values[i] = float(i);
+        Imf::FrameBuffer frame;
+        frame.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()), 4, 4 * 16));
+        {
+            Imf::OutputFile out(file.c_str(), header);
+            out.setFrameBuffer(frame);
+            out.writePixels(12);
+        }
+        ASSERT_EQ(read_exr(file, {"Y"}).at(0, 15, 11), 191.0f) << "the genuine file reads";
+        set_data_window(file, x_max, y_max);
+        expect_refused(file, "uncompressing DWA data");
+    }
+}
+
 // The checks refuse only what is wrong: a genuine file, all zeros (the most
 // compressible content) in every compression, is read back exactly.
 TEST_F(ExrRobustness, GenuineFilesInEveryCompressionAreRead)
