@@ -17,8 +17,10 @@ a time limit; per class the table counts
   hung     still running at the time limit (then killed)
   wrong    another exit status (0 or 1 on bad input, "internal error", several
            lines on stderr, a shell command run through --out)
-  files    files left behind: temporaries (.NAME.tmp-*), an input changed, a
-           device replaced
+  files    files left behind: temporaries (.NAME.penumbra-tmp-*, or an older
+           binary's .NAME.tmp-*), an input changed, a device replaced; after
+           SIGKILL, what is left once a second run has written to the same
+           folders (the promise of docs/robustness.md: the next run sweeps)
 
 A case can count under several columns (crashed and files, say); `clean`
 excludes all the others. Only the standard library is used.
@@ -49,7 +51,7 @@ class Case:
     """One run of the tool: arguments, environment, and what would be right."""
 
     def __init__(self, klass, args, expect=("refuse",), env=None, setup=None, inputs=(), timeout=TIMEOUT,
-                 send_signal=None, check=None, parallel=1):
+                 send_signal=None, check=None, parallel=1, then=None):
         self.klass = klass
         self.args = args            # list; "{dir}" is replaced by the scratch folder
         self.expect = expect        # subset of {"refuse", "ok", "signal"}
@@ -60,6 +62,7 @@ class Case:
         self.send_signal = send_signal  # (signal number, delay seconds)
         self.check = check          # function(scratch, stderr) -> problem text or ""
         self.parallel = parallel    # concurrent copies of the same command
+        self.then = then            # arguments of a second run, after the first, that must exit 0
 
 
 MEMORY_LIMIT = 8 << 30
@@ -141,6 +144,8 @@ def run_case(binary, base, case, number):
                 p.wait()
     for code, err in outcomes:
         classify(case, code, err, result)
+    if case.then:
+        run_second(binary, case, scratch, env, result)
     if leftovers(scratch):
         result["files"] = True
         result["detail"] += " left: " + ", ".join(os.path.basename(p) for p in leftovers(scratch))
@@ -164,6 +169,20 @@ def run_case(binary, base, case, number):
     result["args"] = " ".join(a if len(a) < 80 else a[:40] + "..." for a in case.args)
     shutil.rmtree(scratch, ignore_errors=True)
     return result
+
+
+def run_second(binary, case, scratch, env, result):
+    """A later run in the same folders (after SIGKILL: the one that must sweep)."""
+    try:
+        second = subprocess.run([binary] + [subst(a, scratch) for a in case.then], cwd=scratch, env=env,
+                                stdin=subprocess.DEVNULL, capture_output=True, timeout=case.timeout,
+                                preexec_fn=limit_memory)
+    except subprocess.TimeoutExpired:
+        result["hung"] = True
+        return
+    if second.returncode != 0:
+        result["wrong"] = True
+        result["detail"] += " second run exit %d: %s" % (second.returncode, second.stderr.decode("utf-8", "replace")[:160])
 
 
 def classify(case, code, err, result):
@@ -499,23 +518,25 @@ def cases_odd_outputs(quick):
 # ---- signals and concurrency
 
 def cases_signals(quick, rng):
-    # Each writes tens of megabytes for about a second here.
-    heavy = [["example", "--out", "exdir", "--map-size", "8192"],
-             ["render-scene", "contact", "--map-size", "4096", "--view-size", "320x240", "--samples", "16",
-              "--shadow-map", "o_sm.exr", "--receivers", "o_rx.exr", "--truth", "o_gt.exr"],
-             ["sdf-bake", "--scene", "contact", "--out", "out.pnsdf", "--voxel", "0.01"]]
+    # Each writes tens of megabytes for about a second here; beside each, a
+    # small run writing to the same folders.
+    heavy = [(["example", "--out", "exdir", "--map-size", "8192"], ["example", "--out", "exdir", "--map-size", "16"]),
+             (["render-scene", "contact", "--map-size", "4096", "--view-size", "320x240", "--samples", "16",
+               "--shadow-map", "o_sm.exr", "--receivers", "o_rx.exr", "--truth", "o_gt.exr"],
+              ["render-scene", "contact", "--map-size", "16", "--view-size", "8x6", "--samples", "1",
+               "--shadow-map", "o_sm.exr", "--receivers", "o_rx.exr", "--truth", "o_gt.exr"]),
+             (["sdf-bake", "--scene", "contact", "--out", "out.pnsdf", "--voxel", "0.01"],
+              ["sdf-bake", "--scene", "contact", "--out", "out.pnsdf", "--voxel", "1"])]
     cases = []
     count = 4 if quick else 12
-    for command in heavy:
-        # SIGKILL can land between linking a run's temporaries and renaming them
-        # (docs/robustness.md): the full probe counts what it leaves; the quick
-        # one, a ctest, leaves SIGKILL out so that this window cannot fail CI at random.
-        signals = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP) if quick else \
-            (signal.SIGINT, signal.SIGTERM, signal.SIGKILL, signal.SIGHUP)
-        for number in signals:
+    for command, small in heavy:
+        for number in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL, signal.SIGHUP):
+            # SIGKILL between naming a run's temporaries and renaming them leaves
+            # them (docs/robustness.md); the next run in that folder removes them.
+            then = small if number == signal.SIGKILL else None
             for _ in range(count):
                 cases.append(Case("signals during writes", command, expect=("signal", "ok"),
-                                  send_signal=(number, rng.uniform(0.02, 1.2)), timeout=60))
+                                  send_signal=(number, rng.uniform(0.02, 1.2)), timeout=60, then=then))
     return cases
 
 

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -26,13 +27,14 @@ namespace fs = std::filesystem;
 
 class AtomicOutput : public testing::CliFixture {
 protected:
-    std::vector<std::string> entries() const
+    static std::vector<std::string> entries_of(const fs::path& dir)
     {
         std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
+        for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
         std::sort(names.begin(), names.end());
         return names;
     }
+    std::vector<std::string> entries() const { return entries_of(dir_); }
     void write_text(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
 };
 
@@ -113,6 +115,15 @@ TEST_F(AtomicOutput, UnsafeTargetsAreRefusedUpFront)
     EXPECT_NO_THROW(require_safe_outputs({path("new"), path("other")}, {path("in")}, "test"));
 }
 
+// Waits for the child's marker file.
+bool appears_within_30_s(const fs::path& marker)
+{
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!fs::exists(marker) && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    return fs::exists(marker);
+}
+
 // A child writes a large file through OutputFiles and is killed mid-write;
 // the directory must hold only the marker it wrote before starting. With
 // `named`, the child uses the named-temporary fallback (PENUMBRA_NO_O_TMPFILE).
@@ -133,10 +144,7 @@ void expect_nothing_left_after(int signal_number, const fs::path& dir, bool name
         });
         ::_exit(3);
     }
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-    while (!fs::exists(marker) && std::chrono::steady_clock::now() < deadline)
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    ASSERT_TRUE(fs::exists(marker)) << "the child never started writing";
+    ASSERT_TRUE(appears_within_30_s(marker)) << "the child never started writing";
     ::kill(child, signal_number);
     int status = 0;
     ::waitpid(child, &status, 0);
@@ -197,6 +205,115 @@ TEST_F(AtomicOutput, KilledExampleLeavesNoTemporary)
         const std::string name = entry.path().filename().string();
         EXPECT_TRUE(name == "shadow_map.exr" || name == "receivers.exr") << "left behind: " << name;
     }
+}
+
+// ---- SIGKILL inside publish(): named temporaries, swept by the next run
+//
+// PENUMBRA_TEST_SIGKILL_AT makes the child kill itself at the exact point, so
+// each test hits the window every time (a timed signal would hit it rarely).
+
+bool is_temporary(const std::string& name) { return name.find(".penumbra-tmp-") != std::string::npos; }
+
+// A child publishes new "a" and "b" over old ones and SIGKILLs itself at `point`.
+void publish_and_die_at(const char* point, const fs::path& dir, bool named = false)
+{
+    std::ofstream(dir / "a") << "old a";
+    std::ofstream(dir / "b") << "old b";
+    const pid_t child = ::fork();
+    if (child == 0) {
+        if (named) ::setenv("PENUMBRA_NO_O_TMPFILE", "1", 1);
+        ::setenv("PENUMBRA_TEST_SIGKILL_AT", point, 1);
+        OutputFiles out("test");
+        out.stage((dir / "a").string(), [](const std::string& t) { write_text_to(t, "new a"); });
+        out.stage((dir / "b").string(), [](const std::string& t) { write_text_to(t, "new b"); });
+        out.publish();
+        ::_exit(3);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "status " << status;
+}
+
+// What a later run of penumbra in the same folder leaves: it sweeps first.
+void publish_c_in(const fs::path& dir)
+{
+    OutputFiles out("test");
+    out.stage((dir / "c").string(), [](const std::string& t) { write_text_to(t, "c"); });
+    out.publish();
+}
+
+TEST_F(AtomicOutput, SigkillBeforeTheFirstRenameLeavesEveryTargetOldAndTheNextRunSweeps)
+{
+    for (bool named : {false, true}) {
+        SCOPED_TRACE(named ? "named fallback" : "O_TMPFILE");
+        // A folder of its own each time: a process sweeps a folder only once.
+        const fs::path dir = dir_ / (named ? "named" : "unnamed");
+        fs::create_directories(dir);
+        publish_and_die_at("linked", dir, named);
+        const auto left = entries_of(dir);
+        EXPECT_EQ(std::count_if(left.begin(), left.end(), is_temporary), 2) << "the window this test must hit";
+        EXPECT_EQ(testing::slurp((dir / "a").string()), "old a");
+        EXPECT_EQ(testing::slurp((dir / "b").string()), "old b");
+        publish_c_in(dir);
+        EXPECT_EQ(entries_of(dir), (std::vector<std::string>{"a", "b", "c"}));
+    }
+}
+
+// The honest limit (docs/robustness.md): rename(2) replaces one name at a
+// time, so a kill between two renames leaves a mix of new and old targets.
+TEST_F(AtomicOutput, SigkillBetweenRenamesLeavesAMixThatIsNewThenOld)
+{
+    publish_and_die_at("renamed-1", dir_);
+    EXPECT_EQ(testing::slurp(path("a")), "new a") << "targets are renamed in the order they were staged";
+    EXPECT_EQ(testing::slurp(path("b")), "old b");
+    publish_c_in(dir_);
+    EXPECT_EQ(entries(), (std::vector<std::string>{"a", "b", "c"}));
+}
+
+// A temporary whose writer is alive holds its lock, so the sweep leaves it;
+// names that are not penumbra's temporaries are never touched.
+TEST_F(AtomicOutput, TheSweepSparesALiveWritersTemporaryAndOtherFiles)
+{
+    const std::vector<std::string> foreign{".a.tmp-1-2", ".a.penumbra-tmp-x-1", "a.penumbra-tmp-1-2"};
+    for (const std::string& name : foreign) write_text(name, "not ours");
+    const fs::path marker = dir_ / "started";
+    const pid_t child = ::fork();
+    if (child == 0) {
+        ::setenv("PENUMBRA_NO_O_TMPFILE", "1", 1);  // a named temporary from the start
+        OutputFiles out("test");
+        out.stage((dir_ / "big").string(), [&](const std::string& temporary) {
+            write_text_to(temporary, "being written");
+            std::ofstream(marker) << "1";
+            for (;;) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        });
+        ::_exit(3);
+    }
+    ASSERT_TRUE(appears_within_30_s(marker)) << "the child never started writing";
+    publish_c_in(dir_);
+    const auto left = entries();
+    EXPECT_EQ(std::count_if(left.begin(), left.end(), [](const std::string& name) { return name.rfind(".big.", 0) == 0; }),
+              1) << "the live writer's temporary";
+    for (const std::string& name : foreign) EXPECT_EQ(testing::slurp(path(name)), "not ours") << name;
+    ::kill(child, SIGTERM);  // its handler removes its temporary
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    EXPECT_EQ(entries().size(), foreign.size() + 2) << "c, the marker and the foreign files";
+}
+
+// The real tool, killed inside render-scene's publication of three files, then
+// run again: no temporary survives the second run.
+TEST_F(AtomicOutput, KilledRenderSceneIsSweptByTheNextRun)
+{
+    const std::vector<std::string> args{"render-scene", "contact", "--map-size", "16", "--view-size", "8x6",
+                                        "--samples", "1", "--shadow-map", path("sm.exr"), "--receivers",
+                                        path("rx.exr"), "--truth", path("gt.exr")};
+    const auto killed = testing::run_cli(args, {{"PENUMBRA_TEST_SIGKILL_AT", "linked"}});
+    EXPECT_EQ(killed.signal, SIGKILL) << killed.err;
+    const auto left = entries();
+    EXPECT_EQ(std::count_if(left.begin(), left.end(), is_temporary), 3);
+    EXPECT_EQ(left.size(), 3u) << "no target was replaced";
+    EXPECT_EQ(testing::run_cli(args).exit_code, 0);
+    EXPECT_EQ(entries(), (std::vector<std::string>{"gt.exr", "rx.exr", "sm.exr"}));
 }
 
 }  // namespace

@@ -362,14 +362,7 @@ PN_BACKEND_TEST(ChebyshevCrossBackendTest, AgreesWithScalar)
     }
 }
 
-std::vector<std::string> non_scalar_backends()
-{
-    std::vector<std::string> names = backend_names();
-    names.erase(names.begin());  // "scalar", the oracle
-    return names;
-}
-
-INSTANTIATE_TEST_SUITE_P(Backends, ChebyshevCrossBackendTest, ::testing::ValuesIn(non_scalar_backends()),
+INSTANTIATE_TEST_SUITE_P(Backends, ChebyshevCrossBackendTest, ::testing::ValuesIn(testing::non_scalar_backends()),
                          backend_test_name);
 
 // ---- bad input: penumbra::Error naming the operation and the parameter ------------

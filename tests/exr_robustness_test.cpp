@@ -156,6 +156,25 @@ TEST_F(ExrRobustness, FixedSizeAttributeWithAnotherDeclaredSizeIsRefused)
 // Found by exr_reader_fuzz: a scanline file whose header also carries a
 // `tiles` attribute has 0 scanlines per chunk for the core library (a division
 // by zero in the chunk walk).
+// Found by exr_reader_fuzz (a 2 KB DWAA file, 1.6 GB of line buffers): a
+// second dataWindow attribute. The core library, whose reading is checked,
+// and OpenEXR's C++ reader, which wins with the later value, saw different
+// windows; a header naming an attribute twice is now refused.
+TEST_F(ExrRobustness, AttributeNamedTwiceIsRefused)
+{
+    const std::string file = valid_file("twice.exr");
+    std::string bytes = bytes_of(file);
+    const std::string key("dataWindow\0box2i\0", 17);
+    const std::size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    const std::int32_t claim[5] = {16, 0, 0, 3604488, 11};  // size, then xMin yMin xMax yMax
+    std::string second = key;
+    second.append(reinterpret_cast<const char*>(claim), sizeof claim);
+    bytes.insert(at + key.size() + 4 + 16, second);  // right after the first one's value
+    put_bytes(file, bytes);
+    expect_refused(file, "'dataWindow' twice");
+}
+
 TEST_F(ExrRobustness, ScanlineFileWithATileDescriptionIsRefused)
 {
     const std::string file = valid_file("tiles.exr");
@@ -210,6 +229,36 @@ TEST_F(ExrRobustness, ZeroedOffsetTableIsRefused)
     std::memset(bytes.data() + table, 0, 8);
     put_bytes(file, bytes);
     expect_refused(file, "table.exr");
+}
+
+// OpenEXR 3.1's core cannot decode DWA, so for DWAA and DWAB only the chunk
+// table is checked by penumbra and the pixels come from the C++ reader: a chunk
+// that decompresses short (one 16x12 chunk under a 32x12 or a 16x20 window:
+// still one chunk of DWA's 32 scanlines, within the compression bound) must
+// still be a typed refusal, never padded pixels. Measured: OpenEXR's DWA
+// decompressor throws "Error uncompressing DWA data", which read_exr turns into
+// Error(Io) naming the file (the tool: exit 2, one line).
+TEST_F(ExrRobustness, DwaChunkThatDecompressesShortIsRefused)
+{
+    for (const Imf::Compression c : {Imf::DWAA_COMPRESSION, Imf::DWAB_COMPRESSION})
+    for (const auto& [x_max, y_max] : {std::pair{31, 11}, std::pair{15, 19}}) {
+        const std::string file = path("short-" + std::to_string(int(c)) + "-" + std::to_string(x_max) + ".exr");
+        Imf::Header header(16, 12);
+        header.compression() = c;
+        header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+        std::vector<float> values(16 * 12);
+        for (std::size_t i = 0; i < values.size(); ++i) values[i] = float(i);
+        Imf::FrameBuffer frame;
+        frame.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()), 4, 4 * 16));
+        {
+            Imf::OutputFile out(file.c_str(), header);
+            out.setFrameBuffer(frame);
+            out.writePixels(12);
+        }
+        ASSERT_EQ(read_exr(file, {"Y"}).at(0, 15, 11), 191.0f) << "the genuine file reads";
+        set_data_window(file, x_max, y_max);
+        expect_refused(file, "uncompressing DWA data");
+    }
 }
 
 // The checks refuse only what is wrong: a genuine file, all zeros (the most

@@ -138,14 +138,7 @@ PN_BACKEND_TEST(MomentsCrossBackendTest, AgreesWithScalar)
     }
 }
 
-std::vector<std::string> non_scalar_backends()
-{
-    std::vector<std::string> names = testing::backend_names();
-    names.erase(names.begin());
-    return names;
-}
-
-INSTANTIATE_TEST_SUITE_P(Backends, MomentsCrossBackendTest, ::testing::ValuesIn(non_scalar_backends()),
+INSTANTIATE_TEST_SUITE_P(Backends, MomentsCrossBackendTest, ::testing::ValuesIn(testing::non_scalar_backends()),
                          backend_test_name);
 
 }  // namespace

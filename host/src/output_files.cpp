@@ -1,7 +1,9 @@
 // All-or-nothing publication of output files (penumbra/output_files.h).
 #include "penumbra/output_files.h"
 
+#include <dirent.h>
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -110,13 +112,17 @@ private:
     std::atomic<const char*>* slot_ = nullptr;
 };
 
+// ".NAME.penumbra-tmp-PID-N": hidden, named after the target so that a stray
+// one says what it was, and distinctive, so that the stale-temporary sweep
+// below never takes another program's file for one of ours.
+constexpr std::string_view kTemporaryTag = ".penumbra-tmp-";
+
 std::string hidden_name_beside(const fs::path& target)
 {
     static std::atomic<unsigned> counter{0};
-    // Hidden, and named after the target, so a stray one says what it was.
     std::string name = ".";
     name += target.filename().string();
-    name += ".tmp-";
+    name += kTemporaryTag;
     name += std::to_string(::getpid());
     name += '-';
     name += std::to_string(counter++);
@@ -140,20 +146,98 @@ void flush_to_disk(int fd, const std::string& what)
     if (::fsync(fd) != 0) throw std::system_error(errno, std::generic_category(), "flushing " + what + " to disk");
 }
 
+// Test hook: PENUMBRA_TEST_SIGKILL_AT=POINT makes the process SIGKILL itself at
+// POINT ("linked": every temporary named, none renamed; "renamed-1": the first
+// target replaced), so that tests hit the publication window every time
+// instead of by a lucky signal.
+void sigkill_at_for_tests(std::string_view point)
+{
+    const char* at = std::getenv("PENUMBRA_TEST_SIGKILL_AT");
+    if (at && point == at) ::raise(SIGKILL);
+}
+
+// ---------------------------------------------------------------- stale temporaries
+
+// Every temporary carries an exclusive flock(2) from its creation until it is
+// renamed or removed. The kernel drops the lock when its owner dies, even by
+// SIGKILL, so an unlocked ".*.penumbra-tmp-*" file is an orphan: a process that
+// was killed between naming its temporaries and renaming them (see publish()).
+// A lock, unlike a PID in the name, is not fooled by PID reuse, by another PID
+// namespace sharing the folder, or by a reboot.
+
+bool has_temporary_name(std::string_view name)
+{
+    const std::size_t tag = name.rfind(kTemporaryTag);
+    if (name.size() < 2 || name.front() != '.' || tag == std::string_view::npos || tag == 0) return false;
+    // then PID-N: digits, one '-', digits
+    const std::string_view rest = name.substr(tag + kTemporaryTag.size());
+    const std::size_t dash = rest.find('-');
+    auto digits = [](std::string_view text) {
+        return !text.empty() && text.find_first_not_of("0123456789") == std::string_view::npos;
+    };
+    return dash != std::string_view::npos && digits(rest.substr(0, dash)) && digits(rest.substr(dash + 1));
+}
+
+bool same_file(const struct stat& a, const struct stat& b) { return a.st_dev == b.st_dev && a.st_ino == b.st_ino; }
+
+// Removes `name` in `directory_fd` if it is a regular file nobody holds locked.
+// The name is checked to still lead to the locked file just before it is
+// unlinked: its owner may have renamed it into place meanwhile.
+void remove_if_orphaned(int directory_fd, const char* name)
+{
+    const int fd = ::openat(directory_fd, name, O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) return;
+    struct stat locked {}, named {};
+    if (::fstat(fd, &locked) == 0 && S_ISREG(locked.st_mode) && ::flock(fd, LOCK_EX | LOCK_NB) == 0 &&
+        ::fstatat(directory_fd, name, &named, AT_SYMLINK_NOFOLLOW) == 0 && same_file(locked, named))
+        ::unlinkat(directory_fd, name, 0);
+    ::close(fd);
+}
+
+// Sweeps `directory` once per process, before the first temporary goes there.
+// Best effort: a folder that cannot be listed is left alone (staging into it
+// reports the real problem).
+void remove_orphaned_temporaries_in(const fs::path& directory)
+{
+    static std::mutex mutex;
+    static std::set<std::string> swept;
+    std::error_code ignored;
+    const fs::path key = fs::weakly_canonical(fs::absolute(directory, ignored), ignored);
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!swept.insert(key.empty() ? directory.string() : key.string()).second) return;
+    }
+    DIR* listing = ::opendir(directory.c_str());
+    if (!listing) return;
+    while (const dirent* entry = ::readdir(listing))
+        if (has_temporary_name(entry->d_name)) remove_if_orphaned(::dirfd(listing), entry->d_name);
+    ::closedir(listing);
+}
+
+// Takes the lock that marks a temporary as owned (see above); waits if a sweep
+// holds it for the moment of its check. A file system without locks fails here
+// and in the sweep's flock alike, so nothing there is ever swept.
+void lock_as_owned(int fd)
+{
+    while (::flock(fd, LOCK_EX) != 0 && errno == EINTR) {
+    }
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- one staged file
 
 struct OutputFiles::Staged {
     std::string target;
-    int fd = -1;              // the O_TMPFILE descriptor, or -1 in the fallback
+    int fd = -1;              // the temporary, open and flock()ed until published or removed
+    bool unnamed = false;     // O_TMPFILE (written through /proc/self/fd), else the named fallback
     NamedTemporary named;     // the fallback's file, or the linked name before rename
     ~Staged()
     {
-        named.remove();
+        named.remove();  // while still locked, so that no sweep races the unlink
         if (fd >= 0) ::close(fd);
     }
-    std::string writer_path() const { return fd >= 0 ? "/proc/self/fd/" + std::to_string(fd) : named.name(); }
+    std::string writer_path() const { return unnamed ? "/proc/self/fd/" + std::to_string(fd) : named.name(); }
 };
 
 namespace {
@@ -176,7 +260,9 @@ int open_unnamed_beside(const fs::path& target)
         errno = EOPNOTSUPP;
         return -1;
     }
-    // O_TMPFILE files start with mode 0666 & ~umask, like any new file.
+    // O_TMPFILE files start with mode 0666 & ~umask, like any new file. Locked
+    // before it has a name, so that its name is never seen unlocked.
+    lock_as_owned(fd);
     return fd;
 #else
     (void)target;
@@ -187,14 +273,22 @@ int open_unnamed_beside(const fs::path& target)
 
 bool unnamed_unsupported(int error) { return error == EOPNOTSUPP || error == EISDIR || error == EINVAL; }
 
-void create_named_beside(const fs::path& target, std::string_view operation, NamedTemporary& named)
+// The fallback's named temporary, returned open and locked. Between creating
+// it and locking it a sweep may find it unlocked and remove it: so once locked,
+// the name must still lead to it, or another name is tried.
+int create_named_beside(const fs::path& target, std::string_view operation, NamedTemporary& named)
 {
     for (int attempt = 0; attempt < 100; ++attempt) {
         named.assign(hidden_name_beside(target));
         const int fd = ::open(named.name().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd >= 0) {
+            lock_as_owned(fd);
+            struct stat opened {}, now {};
+            if (::fstat(fd, &opened) == 0 && ::lstat(named.name().c_str(), &now) == 0 && same_file(opened, now))
+                return fd;
             ::close(fd);
-            return;
+            named.release();
+            continue;
         }
         const int error = errno;
         named.release();
@@ -226,12 +320,14 @@ OutputFiles::~OutputFiles() = default;
 
 void OutputFiles::stage(const std::string& path, const std::function<void(const std::string& temporary)>& write)
 {
+    remove_orphaned_temporaries_in(directory_of(path));
     auto file = std::make_unique<Staged>();
     file->target = path;
     file->fd = open_unnamed_beside(path);
-    if (file->fd < 0) {
+    file->unnamed = file->fd >= 0;
+    if (!file->unnamed) {
         if (!unnamed_unsupported(errno)) cannot_create_in(operation_, path, errno);
-        create_named_beside(path, operation_, file->named);
+        file->fd = create_named_beside(path, operation_, file->named);
     }
     try {
         write(file->writer_path());
@@ -256,24 +352,19 @@ void OutputFiles::publish()
 
 void OutputFiles::publish_all()
 {
+    // Every slow step (fsync) comes before the first name is given, so that the
+    // window a SIGKILL can hit -- temporaries named, targets not all replaced --
+    // is only the links and renames themselves.
     try {
-        for (auto& file : staged_) {
-            if (file->fd >= 0) {
-                flush_to_disk(file->fd, file->target);
-                link_unnamed(*file, operation_);
-            } else {
-                const int fd = ::open(file->named.name().c_str(), O_RDONLY | O_CLOEXEC);
-                if (fd < 0) throw std::system_error(errno, std::generic_category(), "reopening " + file->target);
-                const int result = ::fsync(fd);
-                ::close(fd);
-                if (result != 0) throw std::system_error(errno, std::generic_category(), "flushing " + file->target);
-            }
-        }
+        for (auto& file : staged_) flush_to_disk(file->fd, file->target);
+        for (auto& file : staged_)
+            if (file->unnamed) link_unnamed(*file, operation_);
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
         throw_io(operation_, std::string(e.what()) + "; no output was replaced; check free disk space");
     }
+    sigkill_at_for_tests("linked");
     // rename(2) replaces each target in one step: readers see the old file or
     // the new one, never a mix. (A symbolic link as target is replaced, not followed.)
     std::vector<std::string> done;
@@ -294,6 +385,7 @@ void OutputFiles::publish_all()
         }
         file->named.release();
         done.push_back(file->target);
+        if (done.size() == 1) sigkill_at_for_tests("renamed-1");
     }
     staged_.clear();
 }

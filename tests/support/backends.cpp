@@ -18,6 +18,13 @@ std::vector<std::string> backend_names()
     return names;
 }
 
+std::vector<std::string> non_scalar_backends()
+{
+    std::vector<std::string> names = backend_names();
+    names.erase(names.begin());  // "scalar", the oracle
+    return names;
+}
+
 int backend_lanes(const std::string& name)
 {
     if (name == "scalar" || name == "opencl") return 1;

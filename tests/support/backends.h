@@ -14,6 +14,9 @@ namespace penumbra::testing {
 
 // "scalar", "sse4.2", "avx2", "avx512" (those this CPU runs), "opencl".
 std::vector<std::string> backend_names();
+// backend_names() without "scalar": for tests that compare a backend with the
+// scalar oracle, which must not be instantiated (and pass) for scalar itself.
+std::vector<std::string> non_scalar_backends();
 // Lanes of a backend's strips (1 for scalar and OpenCL).
 int backend_lanes(const std::string& name);
 

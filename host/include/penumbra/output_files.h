@@ -6,9 +6,11 @@
 // temporary into the directory under a hidden name and renames each over its
 // target; a failure before the first rename leaves every target as it was. Where
 // the file system lacks O_TMPFILE (or /proc is not mounted), named temporaries
-// ".NAME.tmp-PID-N" are used instead and removed on failure and on SIGINT,
-// SIGTERM and SIGHUP (not SIGKILL); PENUMBRA_NO_O_TMPFILE=1 forces them.
-// docs/robustness.md describes the whole scheme.
+// ".NAME.penumbra-tmp-PID-N" are used instead and removed on failure and on
+// SIGINT, SIGTERM and SIGHUP; PENUMBRA_NO_O_TMPFILE=1 forces them. Every
+// temporary is flock()ed by its writer; one left unlocked (its writer killed
+// by SIGKILL) is removed by the next stage() into its directory.
+// docs/robustness.md describes the whole scheme and its exact guarantee.
 #pragma once
 
 #include <functional>
