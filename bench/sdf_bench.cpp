@@ -21,8 +21,8 @@
 
 #include "bench_inputs.h"
 #include "penumbra/reference.h"
+#include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
-#include "penumbra/sdf_scene.h"
 #include "simd/cpu_kernels.h"
 
 namespace penumbra::bench {
@@ -33,7 +33,7 @@ constexpr int kWidth = 1920, kHeight = 1080;
 struct SdfInputs {
     reference::Scene scene = reference::builtin_scene("contact");
     reference::Receivers receivers = reference::render_receivers(scene, kWidth, kHeight);
-    AnalyticScene analytic{scene.primitives};
+    AnalyticScene analytic = reference::analytic_scene(scene.primitives);
     DistanceGrid grid = bake_distance_grid(scene);
 };
 

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "penumbra/exr_io.h"
-#include "penumbra/reference_scene.h"
+#include "penumbra/reference/scene.h"
 
 namespace penumbra {
 namespace {

@@ -5,9 +5,9 @@
 #include <limits>
 
 #include "penumbra/error.h"
-#include "penumbra/metrics.h"
+#include "penumbra/reference/metrics.h"
 
-namespace penumbra {
+namespace penumbra::reference {
 namespace {
 
 Image row_image(const std::vector<float>& values)
@@ -105,4 +105,4 @@ TEST(Metrics, BadInputsAreErrors)
 }
 
 }  // namespace
-}  // namespace penumbra
+}  // namespace penumbra::reference

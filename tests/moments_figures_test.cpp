@@ -1,7 +1,7 @@
 // Light leaking on the `overlap` reference scene (docs/reference.md: two
 // slabs overlapping as seen from the light, a footprint that holds two
 // blocker depths and the receiver): VSM against EVSM2, EVSM4 and MSM, scored
-// against ray-traced ground truth with penumbra/metrics.h.
+// against ray-traced ground truth with penumbra/reference/metrics.h.
 //
 // MomentsOverlap.MsmLeaksLessThanVsm runs by default at a small size (a
 // check); the table of docs/moments.md is the disabled measurement:
@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "penumbra/chebyshev.h"
-#include "penumbra/metrics.h"
 #include "penumbra/moments.h"
 #include "penumbra/reference.h"
+#include "penumbra/reference/metrics.h"
 
 namespace penumbra {
 namespace {
@@ -131,8 +131,8 @@ struct Score {
 
 Score score(const Image& estimate, const Frame& f)
 {
-    return {light_leaking(estimate, f.truth, &f.receivers.mask), light_leaking(estimate, f.truth, &f.two_layers),
-            rmse(estimate, f.truth, &f.receivers.mask), over_darkening(estimate, f.truth, &f.receivers.mask)};
+    return {reference::light_leaking(estimate, f.truth, &f.receivers.mask), reference::light_leaking(estimate, f.truth, &f.two_layers),
+            reference::rmse(estimate, f.truth, &f.receivers.mask), reference::over_darkening(estimate, f.truth, &f.receivers.mask)};
 }
 
 std::vector<std::pair<std::string, Score>> leak_table(const Frame& f, int radius)

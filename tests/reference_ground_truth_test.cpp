@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "penumbra/error.h"
-#include "penumbra/metrics.h"
-#include "penumbra/reference_ground_truth.h"
+#include "penumbra/reference/ground_truth.h"
+#include "penumbra/reference/metrics.h"
 
 namespace penumbra::reference {
 namespace {
@@ -96,7 +96,7 @@ TEST(ReferenceGroundTruth, ConvergesWhenTheSamplesDouble)
         const int doubled = int(std::lround(n * std::sqrt(2.0)));
         const Image coarse = ground_truth(scene, receivers, {n});
         const Image fine = ground_truth(scene, receivers, {doubled, 12345});
-        const double change = rmse(coarse, fine, &receivers.mask);
+        const double change = reference::rmse(coarse, fine, &receivers.mask);
         EXPECT_LT(change, 1e-3) << name << ": " << n << " against " << doubled;
         EXPECT_GT(change, 0) << name;  // two different estimates, not one computed twice
     }

@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "penumbra/error.h"
-#include "penumbra/reference_light_space.h"
+#include "penumbra/reference/light_space.h"
 
 namespace penumbra::reference {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "penumbra/error.h"
-#include "penumbra/reference_scene.h"
+#include "penumbra/reference/scene.h"
 
 namespace penumbra::reference {
 namespace {

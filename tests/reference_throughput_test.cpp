@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <tbb/info.h>
 
-#include "penumbra/metrics.h"
 #include "penumbra/reference.h"
+#include "penumbra/reference/metrics.h"
 
 namespace penumbra::reference {
 namespace {
@@ -57,9 +57,9 @@ TEST(ReferenceThroughput, DISABLED_GroundTruthFigures)
         const double samples = hits * 64.0 * 64.0;  // in the last, largest run
         const double valid = count(receivers.mask) / (kWidth * kHeight);
         std::printf("%-8s %6.3f %13.5f %13.5f %13.5f %12.1f %14.1f\n", name.c_str(), valid,
-                    rmse(runs[0].truth, runs[1].truth, &receivers.mask),
-                    rmse(runs[1].truth, runs[2].truth, &receivers.mask),
-                    rmse(runs[2].truth, runs[3].truth, &receivers.mask), samples / runs.back().seconds / 1e6,
+                    reference::rmse(runs[0].truth, runs[1].truth, &receivers.mask),
+                    reference::rmse(runs[1].truth, runs[2].truth, &receivers.mask),
+                    reference::rmse(runs[2].truth, runs[3].truth, &receivers.mask), samples / runs.back().seconds / 1e6,
                     samples / runs.back().cpu_seconds / 1e6);
     }
 }

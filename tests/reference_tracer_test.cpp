@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "penumbra/reference_tracer.h"
+#include "penumbra/reference/tracer.h"
 
 namespace penumbra::reference {
 namespace {

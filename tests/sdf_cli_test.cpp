@@ -15,8 +15,8 @@
 
 #include "penumbra/exr_io.h"
 #include "penumbra/reference.h"
+#include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
-#include "penumbra/sdf_scene.h"
 
 #include "support/cli.h"
 
@@ -94,7 +94,7 @@ TEST_F(SdfCli, SceneAndGridMatchTheLibrary)
         const SdfOptions o = sdf_options_for(scene_, estimate == "classic" ? SdfEstimate::Classic
                                                                            : SdfEstimate::Improved);
         expect_equal(read_exr(path("out.exr"), {"Y"}),
-                     sdf_shadows(ctx, AnalyticScene(scene_.primitives), rx_.world_position, &rx_.normal, o));
+                     sdf_shadows(ctx, reference::analytic_scene(scene_.primitives), rx_.world_position, &rx_.normal, o));
         EXPECT_GE(read_exr(path("out.exr"), {"steps"}).at(0, 11, 8), 1.0f);
     }
     ASSERT_EQ(run("sdf-bake --scene contact --voxel 0.1 --out " + path("g.pnsdf")), 0);

@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <string>
 
-#include "penumbra/metrics.h"
 #include "penumbra/reference.h"
+#include "penumbra/reference/metrics.h"
+#include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
-#include "penumbra/sdf_scene.h"
 
 namespace penumbra {
 namespace {
@@ -34,7 +34,7 @@ TEST(SdfFigures, DISABLED_ErrorAgainstGroundTruth)
         const reference::Receivers r = reference::render_receivers(scene, 320, 240);
         const Image truth = reference::ground_truth(scene, r, {c.strata});
         const DistanceGrid grid = bake_distance_grid(scene);
-        const AnalyticScene analytic(scene.primitives);
+        const AnalyticScene analytic = reference::analytic_scene(scene.primitives);
         for (const char* source : {"analytic", "grid"})
             for (SdfEstimate e : {SdfEstimate::Classic, SdfEstimate::Improved}) {
                 Image out(320, 240, 2);
@@ -49,8 +49,8 @@ TEST(SdfFigures, DISABLED_ErrorAgainstGroundTruth)
                         steps += out.at(1, i, j);
                     }
                 std::printf("%-8s %-9s %-9s %.4f   %.4f   %.4f   %.4f     %.1f\n", c.scene, source, name_of(e),
-                            rmse(y, truth, &r.mask), p99_abs_error(y, truth, &r.mask),
-                            light_leaking(y, truth, &r.mask), over_darkening(y, truth, &r.mask), steps / (320 * 240));
+                            reference::rmse(y, truth, &r.mask), reference::p99_abs_error(y, truth, &r.mask),
+                            reference::light_leaking(y, truth, &r.mask), reference::over_darkening(y, truth, &r.mask), steps / (320 * 240));
             }
         std::printf("%s grid: %dx%dx%d nodes, voxel %.4f\n", c.scene, grid.nx(), grid.ny(), grid.nz(),
                     grid.voxel_size());
@@ -68,14 +68,14 @@ TEST(SdfFigures, DISABLED_HardnessFit)
         const reference::Scene scene = reference::builtin_scene(name);
         const reference::Receivers r = reference::render_receivers(scene, 240, 180);
         const Image truth = reference::ground_truth(scene, r, {24});
-        const AnalyticScene analytic(scene.primitives);
+        const AnalyticScene analytic = reference::analytic_scene(scene.primitives);
         for (bool per_receiver : {false, true}) {
             std::printf("%-8s %-13s", name, per_receiver ? "per receiver" : "uniform");
             for (double fit : {1.0, 1.5, 2.0, 2.5, 3.0}) {
                 SdfOptions o = sdf_options_for(scene);
                 if (per_receiver) o.k = float(fit);
                 else o.k = float(sdf_hardness(scene, fit)), o.light_width = 0.0f;
-                std::printf("  %.4f", rmse(sdf_shadows(ctx, analytic, r.world_position, &r.normal, o), truth, &r.mask));
+                std::printf("  %.4f", reference::rmse(sdf_shadows(ctx, analytic, r.world_position, &r.normal, o), truth, &r.mask));
             }
             std::printf("\n");
         }
@@ -97,7 +97,7 @@ TEST(SdfFigures, DISABLED_LaneUtilisation)
             Image out(1920, 1080, 2);
             const SdfOptions o = sdf_options_for(scene);
             if (std::string(source) == "grid") sdf_shadows(ctx, grid, r.world_position, &r.normal, o, out);
-            else sdf_shadows(ctx, AnalyticScene(scene.primitives), r.world_position, &r.normal, o, out);
+            else sdf_shadows(ctx, reference::analytic_scene(scene.primitives), r.world_position, &r.normal, o, out);
             const double rays = 1920.0 * 1080.0;
             std::printf("%-8s %-9s %-9.1f  %.3f    %.3f      %.3f   %.3f      %.3f   %.3f\n", name, source,
                         lane_utilisation(out, 1, 1).active / rays, lane_utilisation(out, 1, 16).ratio(),

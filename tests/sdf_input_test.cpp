@@ -13,8 +13,8 @@
 
 #include "penumbra/error.h"
 #include "penumbra/reference.h"
+#include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
-#include "penumbra/sdf_scene.h"
 #include "sdf_test_scenes.h"
 
 namespace penumbra {
@@ -37,7 +37,7 @@ void expect_error(const std::function<void()>& call, ErrorCategory category, con
 struct Fixture {
     Context ctx{ContextOptions{Backend::Scalar, {}}};
     reference::Scene scene = testing::sphere_over_plane();
-    AnalyticScene analytic{scene.primitives};
+    AnalyticScene analytic = reference::analytic_scene(scene.primitives);
     DistanceGrid grid = bake_distance_grid(scene, distance_grid_box(scene, 0.2), 0.1);
     Image positions = testing::points_image({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, 3);
     Image normals = testing::points_image({{0, 1, 0}, {0, 1, 0}, {0, 1, 0}}, 3);
@@ -91,7 +91,7 @@ TEST(SdfInput, RejectsBadShapes)
 
 TEST(SdfInput, RejectsBadGrids)
 {
-    const Vec3 o{0, 0, 0};
+    const SdfVec3 o{0, 0, 0};
     for (double voxel : {0.0, -0.1, double(NAN), double(INFINITY), 1e-50})
         expect_error([&] { DistanceGrid(4, 4, 4, o, voxel); }, ErrorCategory::InvalidArgument, "voxel size");
     expect_error([&] { DistanceGrid(1, 4, 4, o, 0.1); }, ErrorCategory::InvalidArgument, "at least 2 nodes");
@@ -110,17 +110,48 @@ TEST(SdfInput, RejectsBadGrids)
 
 TEST(SdfInput, RejectsBadPrimitives)
 {
-    using namespace reference;
-    expect_error([] { AnalyticScene({Plane{}, Sphere{{0, 0, 0}, 0.0}}); }, ErrorCategory::InvalidArgument,
+    expect_error([] { AnalyticScene({SdfPlane{}, SdfSphere{{0, 0, 0}, 0.0}}); }, ErrorCategory::InvalidArgument,
                  "primitives[1].radius");
-    expect_error([] { AnalyticScene({Plane{{0, 0, 0}, {0, 0, 0}}}); }, ErrorCategory::InvalidArgument,
+    expect_error([] { AnalyticScene({SdfPlane{{0, 0, 0}, {0, 0, 0}}}); }, ErrorCategory::InvalidArgument,
                  "primitives[0].normal");
-    expect_error([] { AnalyticScene({Box{{0, NAN, 0}, {1, 1, 1}, {}}}); }, ErrorCategory::InvalidArgument,
+    expect_error([] { AnalyticScene({SdfBox{{0, NAN, 0}}}); }, ErrorCategory::InvalidArgument,
                  "primitives[0].center");
-    expect_error([] { AnalyticScene({Sphere{}, Box{{0, 0, 0}, {1, -1, 1}, {}}}); }, ErrorCategory::InvalidArgument,
-                 "primitives[1].size");
-    expect_error([] { AnalyticScene({Capsule{{0, 0, 0}, {0, 1, 0}, -0.5}}); }, ErrorCategory::InvalidArgument,
+    expect_error([] { AnalyticScene({SdfSphere{}, SdfBox{{0, 0, 0}, {0.5, -0.5, 0.5}}}); },
+                 ErrorCategory::InvalidArgument, "primitives[1].half_size");
+    expect_error([] { AnalyticScene({SdfCapsule{{0, 0, 0}, {0, 1, 0}, -0.5}}); }, ErrorCategory::InvalidArgument,
                  "primitives[0].radius");
+    // The kernel inverts a box's rotation by its transpose: sheared, scaled
+    // or non-finite axes would give wrong distances, so they are refused.
+    const SdfVec3 half{0.5, 0.5, 0.5};
+    expect_error([&] { AnalyticScene({SdfBox{{}, half, {1, 0, 0}, {0, 2, 0}, {0, 0, 1}}}); },
+                 ErrorCategory::InvalidArgument, "primitives[0].axis_x, axis_y, axis_z: must be orthonormal");
+    expect_error([&] { AnalyticScene({SdfBox{{}, half, {1, 0, 0}, {0.6, 0.8, 0}, {0, 0, 1}}}); },
+                 ErrorCategory::InvalidArgument, "must be orthonormal");
+    expect_error([&] { AnalyticScene({SdfBox{{}, half, {1, 0, 0}, {0, 1, 0}, {0, 0, NAN}}}); },
+                 ErrorCategory::InvalidArgument, "primitives[0].axis_z: must be finite");
+    // Axes from a float matrix (rounded to ~1e-7) are accepted.
+    const double c = double(float(std::sqrt(0.5)));
+    EXPECT_EQ(AnalyticScene({SdfBox{{}, half, {c, c, 0}, {-c, c, 0}, {0, 0, 1}}}).boxes(), 1);
+}
+
+// A reference box becomes an SdfBox with half its sides and the columns of
+// its Euler rotation as axes; the other kinds copy their fields.
+TEST(SdfInput, ConvertsReferencePrimitives)
+{
+    using namespace reference;
+    const SdfBox b = std::get<SdfBox>(to_sdf(Box{{1, 2, 3}, {2, 4, 6}, {0, 90, 0}}));
+    EXPECT_EQ(b.center, (SdfVec3{1, 2, 3}));
+    EXPECT_EQ(b.half_size, (SdfVec3{1, 2, 3}));
+    const Rotation r = rotation_from_euler_degrees({0, 90, 0});
+    EXPECT_EQ(b.axis_x, to_sdf(r.x));
+    EXPECT_EQ(b.axis_y, to_sdf(r.y));
+    EXPECT_EQ(b.axis_z, to_sdf(r.z));
+    const SdfCapsule c = std::get<SdfCapsule>(to_sdf(Capsule{{1, 2, 3}, {4, 5, 6}, 0.25}));
+    EXPECT_EQ(c.a, (SdfVec3{1, 2, 3}));
+    EXPECT_EQ(c.b, (SdfVec3{4, 5, 6}));
+    EXPECT_EQ(c.radius, 0.25);
+    EXPECT_EQ(std::get<SdfPlane>(to_sdf(Plane{{0, 1, 0}, {0, 2, 0}})).normal, (SdfVec3{0, 2, 0}));
+    EXPECT_EQ(std::get<SdfSphere>(to_sdf(Sphere{{0, 1, 0}, 3})).radius, 3.0);
 }
 
 // Records grouped by kind in the order plane, sphere, box, capsule, with the
@@ -128,8 +159,8 @@ TEST(SdfInput, RejectsBadPrimitives)
 TEST(SdfInput, PacksPrimitivesByKind)
 {
     using namespace reference;
-    const AnalyticScene s({Capsule{{1, 2, 3}, {1, 4, 3}, 0.5}, Sphere{{0, 1, 0}, 2}, Plane{{0, 2, 0}, {0, 3, 0}},
-                           Box{{1, 1, 1}, {2, 4, 6}, {0, 90, 0}}});
+    const AnalyticScene s = analytic_scene({Capsule{{1, 2, 3}, {1, 4, 3}, 0.5}, Sphere{{0, 1, 0}, 2},
+                                            Plane{{0, 2, 0}, {0, 3, 0}}, Box{{1, 1, 1}, {2, 4, 6}, {0, 90, 0}}});
     ASSERT_EQ(s.planes(), 1);
     ASSERT_EQ(s.spheres(), 1);
     ASSERT_EQ(s.boxes(), 1);
@@ -150,7 +181,7 @@ TEST(SdfInput, PacksPrimitivesByKind)
 TEST(SdfInput, BakedNodesHoldTheSceneDistance)
 {
     const reference::Scene scene = reference::builtin_scene("contact");
-    const GridBox box = distance_grid_box(scene, 0.25);
+    const reference::GridBox box = distance_grid_box(scene, 0.25);
     const DistanceGrid grid = bake_distance_grid(scene, box, 0.1);
     EXPECT_EQ(grid.origin().x, float(box.lo.x));
     EXPECT_GE(grid.upper().x, box.hi.x - 1e-6);
@@ -159,7 +190,7 @@ TEST(SdfInput, BakedNodesHoldTheSceneDistance)
     for (int k = 0; k < grid.nz(); k += 3)
         for (int j = 0; j < grid.ny(); j += 2)
             for (int i = 0; i < grid.nx(); i += 5) {
-                const Vec3 p = grid.origin() + Vec3{double(i), double(j), double(k)} * grid.voxel_size();
+                const Vec3 p = reference::from_sdf(grid.origin()) + Vec3{double(i), double(j), double(k)} * grid.voxel_size();
                 ASSERT_EQ(grid.at(i, j, k), float(prepared.signed_distance(p))) << i << "," << j << "," << k;
             }
     // The box holds the bounded primitives with the margin: the sphere's top
@@ -185,7 +216,7 @@ TEST(SdfInput, HardnessFollowsTheLightsSize)
     EXPECT_EQ(o.light_width, 1.5f);  // so each receiver's k is sdf_hardness(1.5, its distance)
     EXPECT_EQ(o.estimate, SdfEstimate::Improved);
     EXPECT_FALSE(o.light.directional);
-    EXPECT_EQ(o.light.vector, contact.light.center);
+    EXPECT_EQ(o.light.vector, reference::to_sdf(contact.light.center));
     expect_error([] { sdf_hardness(0.0, 1.0); }, ErrorCategory::InvalidArgument, "width");
 }
 

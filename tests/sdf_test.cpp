@@ -15,8 +15,8 @@
 
 #include "penumbra/error.h"
 #include "penumbra/reference.h"
+#include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
-#include "penumbra/sdf_scene.h"
 #include "sdf_test_scenes.h"
 #include "support/backends.h"
 
@@ -73,7 +73,7 @@ PN_BACKEND_TEST(SdfTest, SphereOverPlaneAgainstTheIdealEstimate)
     const Profile profile = ground_profile(-2.0, 2.0, 81, 0.1);
     for (SdfEstimate estimate : kEstimates) {
         const SdfOptions o = sdf_options_for(scene, estimate);
-        const Image out = sdf_shadows(ctx, AnalyticScene(scene.primitives), profile.positions, &profile.normals, o);
+        const Image out = sdf_shadows(ctx, reference::analytic_scene(scene.primitives), profile.positions, &profile.normals, o);
         expect_unit_range(out);
         double worst = 0.0;
         for (int i = 0; i < 81; ++i) {
@@ -110,7 +110,7 @@ PN_BACKEND_TEST(SdfTest, SphereOverPlaneAgainstGroundTruth)
         truth.push_back(reference::light_visibility(prepared, scene.light, profile.points[i], {0, 1, 0}, 64, i));
     for (SdfEstimate estimate : kEstimates) {
         const SdfOptions o = sdf_options_for(scene, estimate);
-        const Image out = sdf_shadows(ctx, AnalyticScene(scene.primitives), profile.positions, &profile.normals, o);
+        const Image out = sdf_shadows(ctx, reference::analytic_scene(scene.primitives), profile.positions, &profile.normals, o);
         double sum2 = 0.0;
         for (int i = 0; i < 81; ++i) {
             const double got = out.at(0, i, 0);
@@ -145,7 +145,7 @@ PN_BACKEND_TEST(SdfTest, GridAgreesWithTheAnalyticScene)
     const Profile profile = ground_profile(-2.0, 2.0, 81, 0.1);
     for (SdfEstimate estimate : kEstimates) {
         const SdfOptions o = sdf_options_for(scene, estimate);
-        const Image a = sdf_shadows(ctx, AnalyticScene(scene.primitives), profile.positions, &profile.normals, o);
+        const Image a = sdf_shadows(ctx, reference::analytic_scene(scene.primitives), profile.positions, &profile.normals, o);
         const Image g = sdf_shadows(ctx, grid, profile.positions, &profile.normals, o);
         expect_unit_range(g);
         double worst = 0.0;
@@ -173,7 +173,7 @@ PN_BACKEND_TEST(SdfTest, ReceiversInsideSolidsAreInShadow)
         SdfOptions o = sdf_options_for(scene, estimate);
         o.normal_offset = 0.0f;
         Image out(positions.width(), 1, 2);
-        sdf_shadows(ctx, AnalyticScene(scene.primitives), positions, nullptr, o, out);
+        sdf_shadows(ctx, reference::analytic_scene(scene.primitives), positions, nullptr, o, out);
         for (int i = 0; i < positions.width(); ++i) {
             EXPECT_EQ(out.at(0, i, 0), 0.0f) << "analytic, point " << i;
             EXPECT_EQ(out.at(1, i, 0), 1.0f) << "analytic steps, point " << i;
@@ -193,7 +193,7 @@ PN_BACKEND_TEST(SdfTest, GrazingRays)
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     const reference::Scene scene = testing::sphere_over_plane();
     const reference::PreparedScene prepared(scene.primitives);
-    const AnalyticScene analytic(scene.primitives);
+    const AnalyticScene analytic = reference::analytic_scene(scene.primitives);
     const double a = 2.0 * std::numbers::pi / 180.0;
     SdfOptions o;
     o.light = SdfLight::towards({std::cos(a), std::sin(a), 0});
@@ -242,7 +242,7 @@ PN_BACKEND_TEST(SdfTest, GrazingRays)
 PN_BACKEND_TEST(SdfTest, ExhaustedAndEscapedMarchesKeepTheirEstimate)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    const AnalyticScene ground({reference::Plane{{0, 0, 0}, {0, 1, 0}}});
+    const AnalyticScene ground({SdfPlane{{0, 0, 0}, {0, 1, 0}}});
     const Image rx = testing::points_image({{0, 0.3, 0}}, 1);
     SdfOptions o;
     o.light = SdfLight::towards({1, 0, 0});
@@ -283,7 +283,7 @@ PN_BACKEND_TEST(SdfTest, SlatThinnerThanAVoxelLeaks)
     for (SdfEstimate estimate : kEstimates) {
         SdfOptions o = sdf_options_for(scene, estimate);
         o.light = SdfLight::at({0.1, 6, 0.1});
-        EXPECT_EQ(sdf_shadows(ctx, AnalyticScene(scene.primitives), rx, &up, o).at(0, 0, 0), 0.0f);
+        EXPECT_EQ(sdf_shadows(ctx, reference::analytic_scene(scene.primitives), rx, &up, o).at(0, 0, 0), 0.0f);
         const double k = testing::receiver_k(o, {0.1, 0, 0.1}, {0, 1, 0});
         const float leak = sdf_shadows(ctx, grid, rx, &up, o).at(0, 0, 0);
         if (estimate == SdfEstimate::Classic) {
@@ -308,7 +308,7 @@ PN_BACKEND_TEST(SdfTest, ReceiversOutsideTheGrid)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     const reference::Scene scene = testing::sphere_over_plane();
-    const GridBox box = distance_grid_box(scene, 0.1);
+    const reference::GridBox box = distance_grid_box(scene, 0.1);
     ASSERT_GT(box.lo.y, 0.5);
     const DistanceGrid grid = bake_distance_grid(scene, box, 0.02);
     const std::vector<Vec3> points = {{0, 0, 0},      {0.1, 0, -0.1}, {0.75, 0, 0},
@@ -318,7 +318,7 @@ PN_BACKEND_TEST(SdfTest, ReceiversOutsideTheGrid)
     for (SdfEstimate estimate : kEstimates) {
         const SdfOptions o = sdf_options_for(scene, estimate);
         const Image g = sdf_shadows(ctx, grid, rx, &up, o);
-        const Image a = sdf_shadows(ctx, AnalyticScene(scene.primitives), rx, &up, o);
+        const Image a = sdf_shadows(ctx, reference::analytic_scene(scene.primitives), rx, &up, o);
         expect_unit_range(g);
         EXPECT_EQ(g.at(0, 0, 0), 0.0f);
         EXPECT_EQ(g.at(0, 1, 0), 0.0f);
@@ -334,7 +334,7 @@ PN_BACKEND_TEST(SdfTest, ReceiversOutsideTheGrid)
 struct ContactReceivers {
     reference::Scene scene = reference::builtin_scene("contact");
     reference::Receivers r = reference::render_receivers(scene, 64, 48);
-    AnalyticScene analytic{scene.primitives};
+    AnalyticScene analytic = reference::analytic_scene(scene.primitives);
     DistanceGrid grid = bake_distance_grid(scene, distance_grid_box(scene, 0.2), 0.05);
 };
 
@@ -426,7 +426,7 @@ PN_BACKEND_TEST(SdfTest, NonFiniteReceiversAreReported)
     const reference::Scene scene = testing::sphere_over_plane();
     const Profile profile = ground_profile(-1, 1, 37, 0);
     const DistanceGrid grid = bake_distance_grid(scene, distance_grid_box(scene, 0.3), 0.1);
-    const AnalyticScene analytic(scene.primitives);
+    const AnalyticScene analytic = reference::analytic_scene(scene.primitives);
     auto expect_reported = [&](const Image& positions, const Image& normals, const std::string& needle) {
         for (bool use_grid : {false, true}) {
             try {

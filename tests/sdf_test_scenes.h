@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "penumbra/image.h"
-#include "penumbra/reference_scene.h"
-#include "penumbra/reference_tracer.h"
+#include "penumbra/reference/scene.h"
+#include "penumbra/reference/tracer.h"
 #include "penumbra/sdf.h"
 
 namespace penumbra::testing {
@@ -65,10 +65,10 @@ inline MarchRay march_ray(const SdfOptions& o, Vec3 position, Vec3 normal)
     MarchRay r;
     r.origin = position + normal * double(o.normal_offset);
     if (o.light.directional) {
-        r.dir = reference::normalize(o.light.vector);
+        r.dir = reference::normalize(reference::from_sdf(o.light.vector));
         r.t1 = o.t_max;
     } else {
-        const Vec3 to_light = o.light.vector - r.origin;
+        const Vec3 to_light = reference::from_sdf(o.light.vector) - r.origin;
         r.dir = reference::normalize(to_light);
         r.t1 = std::min(double(o.t_max), reference::length(to_light));
     }
@@ -119,7 +119,7 @@ inline double receiver_k(const SdfOptions& o, Vec3 position, Vec3 normal)
 {
     if (o.light_width == 0.0f) return o.k;
     const Vec3 origin = position + normal * double(o.normal_offset);
-    return o.k * 2.0 * reference::length(o.light.vector - origin) / o.light_width;
+    return o.k * 2.0 * reference::length(reference::from_sdf(o.light.vector) - origin) / o.light_width;
 }
 
 inline double ideal_visibility(const reference::PreparedScene& scene, const SdfOptions& o, Vec3 position,

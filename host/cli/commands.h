@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "penumbra/image.h"
-#include "penumbra/reference_render.h"
+#include "penumbra/reference/render.h"
 
 namespace penumbra::cli {
 

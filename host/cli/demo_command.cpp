@@ -28,13 +28,13 @@
 #include "args.h"
 #include "commands.h"
 #include "demo_methods.h"
+#include "output_directory.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
-#include "penumbra/metrics.h"
 #include "penumbra/png_io.h"
-#include "penumbra/reference_ground_truth.h"
-#include "penumbra/reference_light_space.h"
-#include "output_directory.h"
+#include "penumbra/reference/ground_truth.h"
+#include "penumbra/reference/light_space.h"
+#include "penumbra/reference/metrics.h"
 #include "progress.h"
 
 namespace penumbra::cli {
@@ -207,11 +207,11 @@ Row measure(Context& ctx, const DemoSetting& setting, const std::vector<DemoFram
             "",
             setting.label,
             median_ms(times) / mpix,
-            rmse(first_estimate, f0.truth, mask),
-            p99_abs_error(first_estimate, f0.truth, mask),
-            light_leaking(first_estimate, f0.truth, mask),
-            over_darkening(first_estimate, f0.truth, mask),
-            flicker(estimates, truths, mask)};
+            reference::rmse(first_estimate, f0.truth, mask),
+            reference::p99_abs_error(first_estimate, f0.truth, mask),
+            reference::light_leaking(first_estimate, f0.truth, mask),
+            reference::over_darkening(first_estimate, f0.truth, mask),
+            reference::flicker(estimates, truths, mask)};
 }
 
 void write_previews(const fs::path& dir, const std::string& method, const Image& estimate, const DemoFrame& f0)

@@ -12,9 +12,9 @@
 #include "penumbra/chebyshev.h"
 #include "penumbra/moment_table.h"
 #include "penumbra/moments.h"
-#include "penumbra/reference_light_space.h"
+#include "penumbra/reference/light_space.h"
+#include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
-#include "penumbra/sdf_scene.h"
 
 namespace penumbra::cli {
 namespace {
@@ -127,11 +127,11 @@ private:
 DemoMethod sdf_method(const reference::Scene& scene, int map_size, bool analytic)
 {
     DemoMethod m{analytic ? "sdf-analytic" : "sdf", {}, 0};
-    const std::size_t nodes = map_size >= 1024 ? kSdfGridNodes : kSdfGridNodes / 8;
+    const std::size_t nodes = map_size >= 1024 ? reference::kSdfGridNodes : reference::kSdfGridNodes / 8;
     // Baked on first use: listing the methods (to check --method, to count the
     // work) must not cost a bake per scene, seconds each.
     auto grid = analytic ? nullptr : std::make_shared<LazyGrid>(scene, nodes);
-    auto primitives = std::make_shared<AnalyticScene>(scene.primitives);
+    auto primitives = std::make_shared<AnalyticScene>(reference::analytic_scene(scene.primitives));
     struct Variant {
         const char* label;
         SdfEstimate estimate;

@@ -9,8 +9,8 @@
 
 #include "penumbra/context.h"
 #include "penumbra/image.h"
-#include "penumbra/reference_render.h"
-#include "penumbra/reference_scene.h"
+#include "penumbra/reference/render.h"
+#include "penumbra/reference/scene.h"
 
 namespace penumbra::cli {
 

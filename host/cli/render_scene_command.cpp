@@ -14,8 +14,8 @@
 #include "commands.h"
 #include "penumbra/exr_io.h"
 #include "penumbra/output_files.h"
-#include "penumbra/reference_ground_truth.h"
-#include "penumbra/reference_render.h"
+#include "penumbra/reference/ground_truth.h"
+#include "penumbra/reference/render.h"
 #include "scene_input.h"
 
 namespace penumbra::cli {

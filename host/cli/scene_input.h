@@ -6,7 +6,7 @@
 #include <string>
 #include <system_error>
 
-#include "penumbra/reference_scene.h"
+#include "penumbra/reference/scene.h"
 
 namespace penumbra::cli {
 

@@ -30,8 +30,8 @@
 #include "penumbra/exr_io.h"
 #include "penumbra/output_files.h"
 #include "penumbra/reference.h"
+#include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
-#include "penumbra/sdf_scene.h"
 #include "scene_input.h"
 
 namespace penumbra::cli {
@@ -126,10 +126,11 @@ SdfOptions options_from(const Args& args, const std::optional<reference::Scene>&
         throw UsageError{"option --light-position or --light-direction is required with --grid"};
     if (args.get("--light-position") && args.get("--light-direction"))
         throw UsageError{"options --light-position and --light-direction exclude each other"};
-    if (args.get("--light-position")) o.light = SdfLight::at(triple(args, "--light-position"));
+    if (args.get("--light-position")) o.light = SdfLight::at(reference::to_sdf(triple(args, "--light-position")));
     if (args.get("--light-direction")) {
-        o.light = SdfLight::towards(triple(args, "--light-direction"));
-        if (reference::length(o.light.vector) == 0.0) throw UsageError{"option --light-direction: must not be 0,0,0"};
+        const reference::Vec3 direction = triple(args, "--light-direction");
+        if (reference::length(direction) == 0.0) throw UsageError{"option --light-direction: must not be 0,0,0"};
+        o.light = SdfLight::towards(reference::to_sdf(direction));
         o.light_width = 0.0f;
     }
     o.k = positive(args, "--k", o.k);
@@ -213,7 +214,7 @@ int sdf_shade_command(const std::vector<std::string>& argv)
                                                : bake_distance_grid(*scene);
         sdf_shadows(context, grid, positions, n, options, out);
     } else {
-        sdf_shadows(context, AnalyticScene(scene->primitives), positions, n, options, out);
+        sdf_shadows(context, reference::analytic_scene(scene->primitives), positions, n, options, out);
     }
     if (out.channels() == 2) write_exr(out_path, out, {"Y", "steps"});
     else write_exr(out_path, out, {"Y"});
@@ -233,7 +234,7 @@ int sdf_bake_command(const std::vector<std::string>& argv)
     if (args.get("--margin") && !args.get("--voxel")) throw UsageError{"option --margin: only with --voxel"};
     DistanceGrid grid;
     if (args.get("--voxel")) {
-        const GridBox box = args.get("--margin") ? distance_grid_box(scene, positive(args, "--margin", 0.0f, true))
+        const reference::GridBox box = args.get("--margin") ? distance_grid_box(scene, positive(args, "--margin", 0.0f, true))
                                                  : distance_grid_box(scene);
         grid = bake_distance_grid(scene, box, positive(args, "--voxel", 0.0f));
     } else {

@@ -1,5 +1,5 @@
-// Host operations sdf_shadows(): validate, fill SdfParams, dispatch; and the
-// lane-utilisation measurement of a march.
+// Host operations sdf_shadows(): validate, fill SdfParams, dispatch; the
+// lane-utilisation measurement of a march; k from a light's size.
 #include "penumbra/sdf.h"
 
 #include <algorithm>
@@ -17,6 +17,8 @@ const std::string kOp = "sdf_shadows";
 
 std::string str(double v) { return std::to_string(v); }
 
+double length(SdfVec3 v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
+
 void check_options(const SdfOptions& o)
 {
     require(std::isfinite(o.k) && o.k > 0.0f, kOp, "k must be a finite value > 0 (got " + str(o.k) + ")");
@@ -33,10 +35,10 @@ void check_options(const SdfOptions& o)
             "light_width must be a finite value >= 0 (got " + str(o.light_width) + ")");
     require(o.light_width == 0.0f || !o.light.directional, kOp,
             "light_width applies to a light at a point (SdfLight::at); give a directional light an absolute k");
-    const reference::Vec3 v = o.light.vector;
+    const SdfVec3 v = o.light.vector;
     const bool finite = std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
     require(finite, kOp, std::string("the light's ") + (o.light.directional ? "direction" : "centre") + " is not finite");
-    if (o.light.directional) require(reference::length(v) > 0.0, kOp, "the light's direction is zero");
+    if (o.light.directional) require(length(v) > 0.0, kOp, "the light's direction is zero");
 }
 
 void check_receivers(const Image& positions, const Image* normals, const SdfOptions& o)
@@ -83,8 +85,11 @@ SdfParams base_params(const Image& positions, const Image& out, const SdfOptions
     p.max_steps = o.max_steps;
     p.estimate = o.estimate == SdfEstimate::Improved ? PN_SDF_IMPROVED : PN_SDF_CLASSIC;
     p.write_steps = out.channels() == 2;
-    reference::Vec3 light = o.light.vector;
-    if (o.light.directional) light = reference::normalize(light);
+    SdfVec3 light = o.light.vector;
+    if (o.light.directional) {
+        const double n = length(light);
+        light = {light.x / n, light.y / n, light.z / n};
+    }
     p.light_is_direction = o.light.directional;
     p.light_x = float(light.x);
     p.light_y = float(light.y);
@@ -192,6 +197,15 @@ LaneUtilisation lane_utilisation(const Image& steps, int channel, int tile_width
             u.total += lanes * most;
         }
     return u;
+}
+
+double sdf_hardness(double light_width, double distance, double fit)
+{
+    const std::string op = "sdf_hardness";
+    require(std::isfinite(light_width) && light_width > 0.0, op, "the light's width must be > 0");
+    require(std::isfinite(distance) && distance > 0.0, op, "the distance to the light must be > 0");
+    require(std::isfinite(fit) && fit > 0.0, op, "fit must be > 0");
+    return fit * 2.0 * distance / light_width;
 }
 
 }  // namespace penumbra

@@ -19,7 +19,7 @@ constexpr char kMagic[8] = {'P', 'N', 'S', 'D', 'F', 'G', 'R', '1'};
 constexpr std::size_t kHeaderBytes = 8 + 3 * 4 + 4 * 4;
 constexpr std::size_t kMaxNodes = std::size_t(std::numeric_limits<std::int32_t>::max());
 
-bool finite(reference::Vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(SdfVec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // The header's fields, as stored.
 struct Header {
@@ -103,7 +103,7 @@ void check_nodes(const DistanceGrid& grid, const std::string& path)
 
 }  // namespace
 
-DistanceGrid::DistanceGrid(int nx, int ny, int nz, reference::Vec3 origin, double voxel_size)
+DistanceGrid::DistanceGrid(int nx, int ny, int nz, SdfVec3 origin, double voxel_size)
 {
     const std::string op = "DistanceGrid";
     require(nx >= 2 && ny >= 2 && nz >= 2, op,
@@ -123,7 +123,7 @@ DistanceGrid::DistanceGrid(int nx, int ny, int nz, reference::Vec3 origin, doubl
     storage_ = AlignedBuffer(size() * sizeof(float));
 }
 
-reference::Vec3 DistanceGrid::upper() const noexcept
+SdfVec3 DistanceGrid::upper() const noexcept
 {
     return {origin_[0] + double(voxel_) * (nx_ - 1), origin_[1] + double(voxel_) * (ny_ - 1),
             origin_[2] + double(voxel_) * (nz_ - 1)};

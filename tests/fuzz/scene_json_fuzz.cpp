@@ -11,7 +11,7 @@
 #include <string_view>
 
 #include "penumbra/error.h"
-#include "penumbra/reference_scene.h"
+#include "penumbra/reference/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "penumbra/reference_scene.h"
+#include "penumbra/reference/scene.h"
 
 int main(int argc, char** argv)
 {

@@ -5,20 +5,53 @@
 // angle" seen (Quilez): visibility in [0, 1]. Two sources of distance: a
 // DistanceGrid (sampled trilinearly, what engines bake) and an AnalyticScene
 // (planes, spheres, boxes, capsules evaluated in the kernel).
-// penumbra/sdf_scene.h bakes grids from reference scenes and derives k from
-// the light's size; docs/sdf.md has the conventions and measured figures.
+// The types here are the library's own, so that this API depends on nothing
+// of the ground-truth side: penumbra::reference (its own target,
+// penumbra/reference/sdf_scene.h) converts its scenes to them, bakes grids
+// from them and derives k from their lights; docs/sdf.md has the conventions
+// and measured figures.
 #pragma once
 
 #include <cstddef>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "penumbra/context.h"
 #include "penumbra/image.h"
-#include "penumbra/reference_geometry.h"
-#include "penumbra/reference_scene.h"
 
 namespace penumbra {
+
+// A world-space point or direction. Double, as a renderer's scene usually
+// is; the kernels receive float (each record field is rounded once).
+struct SdfVec3 {
+    double x = 0, y = 0, z = 0;
+    friend bool operator==(const SdfVec3&, const SdfVec3&) = default;
+};
+
+// The solids the analytic kernel evaluates (kernels/sdf.h), each by its exact
+// signed distance, negative inside.
+struct SdfPlane {  // the half-space dot(p - point, normal) <= 0 (normal non-zero, normalised on use)
+    SdfVec3 point;
+    SdfVec3 normal{0, 1, 0};
+};
+struct SdfSphere {
+    SdfVec3 center;
+    double radius = 1;
+};
+// An oriented box: half side lengths along its own axes, which are the
+// world images of the local x, y and z axes (the columns of its rotation;
+// orthonormal within 1e-5). An engine's transform gives them directly.
+struct SdfBox {
+    SdfVec3 center;
+    SdfVec3 half_size{0.5, 0.5, 0.5};
+    SdfVec3 axis_x{1, 0, 0}, axis_y{0, 1, 0}, axis_z{0, 0, 1};
+};
+struct SdfCapsule {  // the points within `radius` of the segment [a, b]
+    SdfVec3 a, b{0, 1, 0};
+    double radius = 0.5;
+};
+using SdfPrimitive = std::variant<SdfPlane, SdfSphere, SdfBox, SdfCapsule>;
 
 // A node-centred grid of signed distances (world units, negative inside):
 // node (i, j, k) lies at origin + voxel_size * (i, j, k); nodes are stored x
@@ -32,16 +65,16 @@ public:
     // Zero-filled. Throws Error(InvalidArgument) for fewer than 2 nodes on an
     // axis, more than 2^31 - 1 nodes, a voxel size that is not finite and > 0,
     // or an origin that is not finite.
-    DistanceGrid(int nx, int ny, int nz, reference::Vec3 origin, double voxel_size);
+    DistanceGrid(int nx, int ny, int nz, SdfVec3 origin, double voxel_size);
 
     int nx() const noexcept { return nx_; }
     int ny() const noexcept { return ny_; }
     int nz() const noexcept { return nz_; }
     std::size_t size() const noexcept { return std::size_t(nx_) * ny_ * nz_; }
     bool empty() const noexcept { return size() == 0; }
-    reference::Vec3 origin() const noexcept { return {origin_[0], origin_[1], origin_[2]}; }
+    SdfVec3 origin() const noexcept { return {origin_[0], origin_[1], origin_[2]}; }
     // The last node: origin + voxel_size * (nx - 1, ny - 1, nz - 1).
-    reference::Vec3 upper() const noexcept;
+    SdfVec3 upper() const noexcept;
     double voxel_size() const noexcept { return voxel_; }
 
     float* data() noexcept { return reinterpret_cast<float*>(storage_.data()); }
@@ -63,8 +96,9 @@ class AnalyticScene {
 public:
     AnalyticScene() = default;  // no primitives: every receiver is lit
     // Throws Error(InvalidArgument) naming primitives[i] and the field for a
-    // non-finite value, a zero normal, or a radius or box side that is not > 0.
-    explicit AnalyticScene(const std::vector<reference::Primitive>& primitives);
+    // non-finite value, a zero normal, a radius or half side that is not > 0,
+    // or box axes that are not orthonormal.
+    explicit AnalyticScene(const std::vector<SdfPrimitive>& primitives);
 
     int planes() const noexcept { return counts_[0]; }
     int spheres() const noexcept { return counts_[1]; }
@@ -81,10 +115,10 @@ private:
 // nearer), or along one direction towards a distant light (rays end at t_max).
 struct SdfLight {
     bool directional = false;
-    reference::Vec3 vector{0, 10, 0};  // the centre, or the direction (normalised on use)
+    SdfVec3 vector{0, 10, 0};  // the centre, or the direction (normalised on use)
 
-    static SdfLight at(reference::Vec3 centre) { return {false, centre}; }
-    static SdfLight towards(reference::Vec3 direction) { return {true, direction}; }
+    static SdfLight at(SdfVec3 centre) { return {false, centre}; }
+    static SdfLight towards(SdfVec3 direction) { return {true, direction}; }
 };
 
 enum class SdfEstimate {
@@ -99,7 +133,7 @@ struct SdfOptions {
     // size at one distance). With light_width = W > 0 (a light at a point):
     // each receiver uses k * 2 D / W, D its own distance to the light's
     // centre, so 1/k is the lit clearance as a fraction of the light's
-    // half-angle seen from there (kSdfHardnessFit in penumbra/sdf_scene.h).
+    // half-angle seen from there (kSdfHardnessFit below).
     float k = 8.0f;
     float light_width = 0.0f;   // world units, >= 0; > 0 only with SdfLight::at
     SdfEstimate estimate = SdfEstimate::Classic;
@@ -128,6 +162,18 @@ void sdf_shadows(Context& context, const DistanceGrid& grid, const Image& positi
                  const SdfOptions& options, Image& out);
 void sdf_shadows(Context& context, const AnalyticScene& scene, const Image& positions, const Image* normals,
                  const SdfOptions& options, Image& out);
+
+// The light's half-angle from distance D is about W / (2 D) for a light of
+// width W (a square's side, a disk's diameter); a ray whose clearance angle
+// h / t reaches it sees the whole light. k = fit 2 D / W makes the estimate
+// reach 1 at 1 / fit of that angle. The estimate is 0 where the ray to the
+// light's centre is blocked (where the truth is still 1/2), so it sees only
+// the outer half of a penumbra; fit = 2 minimises the squared error across a
+// straight edge's penumbra (docs/sdf.md derives it) and, measured against the
+// ground truth, is within 1% of the best fit on contact, overlap and grazing.
+// Throws Error(InvalidArgument) for a width, distance or fit not finite and > 0.
+inline constexpr double kSdfHardnessFit = 2.0;
+double sdf_hardness(double light_width, double distance, double fit = kSdfHardnessFit);
 
 // How busy the lanes of a SIMD march are: a group of receivers that share a
 // strip runs until its slowest member is done, so it costs (lanes x its

@@ -14,7 +14,7 @@
 
 #include <vector>
 
-#include "penumbra/reference_scene.h"
+#include "penumbra/reference/scene.h"
 
 namespace penumbra::reference {
 

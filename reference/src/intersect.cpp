@@ -1,9 +1,9 @@
-// Ray-primitive intersections (see reference_tracer.h for the contract: the
+// Ray-primitive intersections (see penumbra/reference/tracer.h for the contract: the
 // first surface crossing in (t_min, t_max), entering or leaving the solid).
 #include <algorithm>
 #include <cmath>
 
-#include "penumbra/reference_tracer.h"
+#include "penumbra/reference/tracer.h"
 
 namespace penumbra::reference {
 namespace {

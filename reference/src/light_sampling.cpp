@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "penumbra/reference_ground_truth.h"
+#include "penumbra/reference/ground_truth.h"
 
 namespace penumbra::reference {
 namespace {

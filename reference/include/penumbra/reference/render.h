@@ -5,7 +5,7 @@
 #pragma once
 
 #include "penumbra/image.h"
-#include "penumbra/reference_scene.h"
+#include "penumbra/reference/scene.h"
 
 namespace penumbra::reference {
 
@@ -15,7 +15,7 @@ namespace penumbra::reference {
 Image render_shadow_map(const Scene& scene, int width, int height);
 
 // What the view camera sees, per pixel (all images width x height).
-//  light_uvz       3 channels: u, v, z in light space (reference_light_space.h)
+//  light_uvz       3 channels: u, v, z in light space (light_space.h)
 //  world_position  3 channels: x, y, z of the visible point
 //  normal          3 channels: the outward unit normal there
 //  view_depth      1 channel: distance along the view camera's axis

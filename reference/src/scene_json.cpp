@@ -13,7 +13,7 @@
 
 #include "penumbra/error.h"
 #include "penumbra/input_file.h"
-#include "penumbra/reference_scene.h"
+#include "penumbra/reference/scene.h"
 
 namespace penumbra::reference {
 namespace {

@@ -14,9 +14,9 @@
 #include <cstdint>
 
 #include "penumbra/image.h"
-#include "penumbra/reference_render.h"
-#include "penumbra/reference_scene.h"
-#include "penumbra/reference_tracer.h"
+#include "penumbra/reference/render.h"
+#include "penumbra/reference/scene.h"
+#include "penumbra/reference/tracer.h"
 
 namespace penumbra::reference {
 

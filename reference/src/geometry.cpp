@@ -1,4 +1,4 @@
-#include "penumbra/reference_geometry.h"
+#include "penumbra/reference/geometry.h"
 
 #include <numbers>
 

@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "penumbra/reference_tracer.h"
+#include "penumbra/reference/tracer.h"
 
 namespace penumbra::reference {
 

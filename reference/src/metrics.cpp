@@ -1,5 +1,5 @@
-// Error metrics (definitions in metrics.h).
-#include "penumbra/metrics.h"
+// Error metrics (definitions in penumbra/reference/metrics.h).
+#include "penumbra/reference/metrics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "penumbra/error.h"
 
-namespace penumbra {
+namespace penumbra::reference {
 namespace {
 
 std::string size_of(const Image& image)
@@ -132,4 +132,4 @@ double flicker(const std::vector<Image>& estimates, const std::vector<Image>& tr
     return deviation.value();
 }
 
-}  // namespace penumbra
+}  // namespace penumbra::reference

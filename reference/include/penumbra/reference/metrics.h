@@ -1,7 +1,7 @@
 // Error metrics of a shadow estimate against the ground truth.
 //
 // Every metric takes one-channel images of one size: `estimate` (a method's
-// visibility in [0, 1]) and `truth` (reference::ground_truth), and an optional
+// visibility in [0, 1]) and `truth` (ground_truth), and an optional
 // `mask` of the same size: a pixel counts where mask > 0.5 (the receivers'
 // validity mask), every pixel when mask is null. Each throws
 // Error(InvalidArgument) for empty images, a channel count other than 1 or a
@@ -16,7 +16,7 @@
 
 #include "penumbra/image.h"
 
-namespace penumbra {
+namespace penumbra::reference {
 
 // sqrt(mean((estimate - truth)^2)).
 double rmse(const Image& estimate, const Image& truth, const Image* mask = nullptr);
@@ -37,11 +37,11 @@ double over_darkening(const Image& estimate, const Image& truth, const Image* ma
 // Flicker: for each pixel, the standard deviation over the K frames of
 // e_k = estimate_k - truth_k (population form, divided by K), then the mean
 // over pixels. The truth of each frame is rendered with that frame's light
-// (reference::flicker_frames), so only changes beyond the true change count.
+// (flicker_frames), so only changes beyond the true change count.
 // Needs K >= 2 frames; all images one size (the mask too).
 double flicker(const std::vector<Image>& estimates, const std::vector<Image>& truths, const Image* mask = nullptr);
 
 inline constexpr double kLeakingTruthBelow = 0.05;
 inline constexpr double kOverDarkeningTruthAbove = 0.95;
 
-}  // namespace penumbra
+}  // namespace penumbra::reference

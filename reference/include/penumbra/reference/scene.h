@@ -12,7 +12,7 @@
 #include <variant>
 #include <vector>
 
-#include "penumbra/reference_geometry.h"
+#include "penumbra/reference/geometry.h"
 
 namespace penumbra::reference {
 

@@ -8,9 +8,9 @@
 #include <tbb/parallel_for.h>
 
 #include "penumbra/error.h"
-#include "penumbra/reference_light_space.h"
-#include "penumbra/reference_render.h"
-#include "penumbra/reference_tracer.h"
+#include "penumbra/reference/light_space.h"
+#include "penumbra/reference/render.h"
+#include "penumbra/reference/tracer.h"
 
 namespace penumbra::reference {
 namespace {

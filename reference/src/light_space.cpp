@@ -1,9 +1,9 @@
 // LightProjection: world points to shadow-map coordinates and back (the
-// formulas are in reference_light_space.h).
+// formulas are in penumbra/reference/light_space.h).
 #include <cmath>
 #include <numbers>
 
-#include "penumbra/reference_light_space.h"
+#include "penumbra/reference/light_space.h"
 
 namespace penumbra::reference {
 

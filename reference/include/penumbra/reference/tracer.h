@@ -1,6 +1,6 @@
 // Ray casting and signed distance against the analytic primitives.
 //
-// Each primitive is a solid (reference_scene.h). An intersection is the first
+// Each primitive is a solid (scene.h). An intersection is the first
 // parameter t in (t_min, t_max) at which a ray crosses the primitive's
 // surface, entering or leaving: a ray that starts inside a solid hits it on
 // the way out, so a shadow ray from inside an occluder is occluded, as it
@@ -12,7 +12,7 @@
 #include <optional>
 #include <vector>
 
-#include "penumbra/reference_scene.h"
+#include "penumbra/reference/scene.h"
 
 namespace penumbra::reference {
 
@@ -38,7 +38,7 @@ std::optional<Hit> intersect(const Ray& ray, const OrientedBox& box, double t_mi
 std::optional<Hit> intersect(const Ray& ray, const Capsule& capsule, double t_min, double t_max);
 
 // Exact signed distances (negative inside), the closed forms of Quilez's
-// catalogue (iquilezles.org/articles/distfunctions), derived in reference_sdf.cpp.
+// catalogue (iquilezles.org/articles/distfunctions), derived in reference/src/signed_distance.cpp.
 double signed_distance(Vec3 p, const Plane& plane);
 double signed_distance(Vec3 p, const Sphere& sphere);
 double signed_distance(Vec3 p, const OrientedBox& box);

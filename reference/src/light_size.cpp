@@ -21,8 +21,8 @@
 #include <string>
 
 #include "penumbra/error.h"
-#include "penumbra/reference_light_space.h"
-#include "penumbra/reference_tracer.h"
+#include "penumbra/reference/light_space.h"
+#include "penumbra/reference/tracer.h"
 
 namespace penumbra::reference {
 namespace {

@@ -2,7 +2,7 @@
 #include <string>
 
 #include "penumbra/error.h"
-#include "penumbra/reference_light_space.h"
+#include "penumbra/reference/light_space.h"
 
 namespace penumbra::reference {
 

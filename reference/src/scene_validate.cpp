@@ -4,7 +4,7 @@
 #include <string>
 
 #include "penumbra/error.h"
-#include "penumbra/reference_scene.h"
+#include "penumbra/reference/scene.h"
 
 namespace penumbra::reference {
 namespace {

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <limits>
 
-#include "penumbra/reference_tracer.h"
+#include "penumbra/reference/tracer.h"
 
 namespace penumbra::reference {
 namespace {

@@ -4,7 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include "penumbra/error.h"
-#include "penumbra/reference_ground_truth.h"
+#include "penumbra/reference/ground_truth.h"
 
 namespace penumbra::reference {
 namespace {
