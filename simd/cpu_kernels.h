@@ -80,7 +80,7 @@ extern const CpuKernels kernels_avx512;
 // ISAs this CPU can run, best last (never includes "scalar").
 std::vector<std::string_view> supported_isas();
 // The table for an ISA name ("scalar", "sse4.2", "avx2", "avx512"); throws
-// Error(Unavailable) for an unknown name or one this CPU cannot run.
+// Error(InvalidArgument) for an unknown name, Error(Unavailable) for one this CPU cannot run.
 const CpuKernels& kernels_for(std::string_view isa);
 // The ISA the SIMD backend uses: PENUMBRA_SIMD_ISA if set (checked), else the best.
 std::string_view chosen_isa();

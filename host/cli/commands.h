@@ -25,6 +25,6 @@ int strata_for_samples(int samples);                // n such that n^2 ~ samples
 // The receivers as one image with the channels of kReceiverChannels.
 extern const std::vector<std::string> kReceiverChannels;
 Image pack_receivers(const reference::Receivers& receivers);
-int blur_command(const std::vector<std::string>& args);  // host/cli/bilateral_command.cpp
+int blur_command(const std::vector<std::string>& args);
 
 }  // namespace penumbra::cli

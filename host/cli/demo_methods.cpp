@@ -1,17 +1,18 @@
-// The demo's method list. Settings sweep the parameter that trades time or
-// blur for error: the window radius of VSM, the light size of VSSM (around the
-// scene's own, from reference::light_size).
+// The demo's method list. The shading methods are the library's method table
+// (penumbra/methods.h) at a sweep of the setting that trades time or blur for
+// error: the window radius of the box methods, the light size of the soft
+// ones (around the scene's own, from reference::light_size). The rows that
+// are no shading method (distance fields, the +blur variants) are the demo's.
 #include "demo_methods.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include "penumbra/bilateral.h"
-#include "penumbra/chebyshev.h"
-#include "penumbra/moment_table.h"
-#include "penumbra/moments.h"
+#include "penumbra/methods.h"
 #include "penumbra/reference/light_space.h"
 #include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
@@ -26,30 +27,25 @@ std::string format(const char* pattern, double value)
     return text;
 }
 
-DemoMethod vsm_method()
-{
-    DemoMethod m{"vsm", {}, 1};
-    for (int radius : {1, 3, 6})
-        m.settings.push_back({"r=" + std::to_string(radius), [radius](Context& ctx, const DemoFrame& f) {
-                                  const MomentTable table = build_moment_table(ctx, f.shadow_map);
-                                  return vsm(ctx, table, f.receivers.light_uvz, VsmOptions{radius});
-                              }});
-    return m;
-}
+// The setting whose images the demo writes: the middle of a three-point
+// sweep, the first of the others (the estimate k, the one blurred variant).
+constexpr int kMiddleSetting = 1;
+constexpr int kFirstSetting = 0;
 
-DemoMethod vssm_method(const reference::Scene& scene, int map_size)
+struct SweepPoint {
+    std::string label;
+    MethodSettings settings;
+};
+
+// A method of the library's method table at the settings of `sweep`.
+DemoMethod table_method(const char* name, const std::vector<SweepPoint>& sweep)
 {
-    DemoMethod m{"vssm", {}, 1};
-    const double physical = reference::light_size(scene);
-    // The exact table keeps blocker searches up to 253 texels exact.
-    const double largest = 252.0 / map_size;
-    for (double scale : {0.5, 1.0, 2.0}) {
-        const float light = float(std::min(physical * scale, largest));
-        m.settings.push_back({format("L=%.3g", light), [light](Context& ctx, const DemoFrame& f) {
-                                  const MomentTable table = build_moment_table(ctx, f.shadow_map);
-                                  return vssm(ctx, table, f.receivers.light_uvz, VssmOptions{light});
+    const Method& method = find_method(name);
+    DemoMethod m{method.name, {}, kMiddleSetting};
+    for (const SweepPoint& point : sweep)
+        m.settings.push_back({point.label, [&method, s = point.settings](Context& ctx, const DemoFrame& f) {
+                                  return method.run(ctx, f.shadow_map, f.receivers.light_uvz, s);
                               }});
-    }
     return m;
 }
 
@@ -58,48 +54,35 @@ DemoMethod vssm_method(const reference::Scene& scene, int map_size)
 // the reference scenes (docs/moments.md).
 constexpr float kDemoMsmDepthBias = 3e-4f;
 
-DemoMethod msm_method()
+// The box methods sweep the radius (EVSM with the exact table's default
+// exponents).
+std::vector<SweepPoint> radius_sweep(std::optional<float> depth_bias = std::nullopt)
 {
-    DemoMethod m{"msm", {}, 1};
-    for (int radius : {1, 3, 6})
-        m.settings.push_back({"r=" + std::to_string(radius), [radius](Context& ctx, const DemoFrame& f) {
-                                  const MsmTable table = build_msm_table(ctx, f.shadow_map);
-                                  return msm(ctx, table, f.receivers.light_uvz, {radius, {}, kDemoMsmDepthBias});
-                              }});
-    return m;
-}
-
-DemoMethod msm_soft_method(const reference::Scene& scene, int map_size)
-{
-    DemoMethod m{"msm-soft", {}, 1};
-    const double physical = reference::light_size(scene);
-    const double largest = 252.0 / map_size;  // exact tables: searches up to 253 texels
-    for (double scale : {0.5, 1.0, 2.0}) {
-        const float light = float(std::min(physical * scale, largest));
-        m.settings.push_back({format("L=%.3g", light), [light](Context& ctx, const DemoFrame& f) {
-                                  const MsmTable table = build_msm_table(ctx, f.shadow_map);
-                                  return msm_soft(ctx, table, f.receivers.light_uvz,
-                                                  {light, {}, kDemoMsmDepthBias});
-                              }});
+    std::vector<SweepPoint> sweep;
+    for (int radius : {1, 3, 6}) {
+        MethodSettings s;
+        s.radius = radius;
+        s.depth_bias = depth_bias;
+        sweep.push_back({"r=" + std::to_string(radius), s});
     }
-    return m;
+    return sweep;
 }
 
-// EVSM with the exact table's default exponents; the sweep is the radius and
-// the warp count (EVSM2: positive warp only; EVSM4: both).
-DemoMethod evsm_method(int channels)
+// The soft methods sweep the light size around the scene's own; the exact
+// table keeps blocker searches up to 253 texels exact.
+std::vector<SweepPoint> light_sweep(const reference::Scene& scene, int map_size,
+                                    std::optional<float> depth_bias = std::nullopt)
 {
-    DemoMethod m{channels == 2 ? "evsm2" : "evsm4", {}, 1};
-    for (int radius : {1, 3, 6})
-        m.settings.push_back({"r=" + std::to_string(radius), [radius, channels](Context& ctx, const DemoFrame& f) {
-                                  EvsmWarp warp;
-                                  warp.channels = channels;
-                                  const EvsmTable table = build_evsm_table(ctx, f.shadow_map, warp);
-                                  EvsmOptions o;
-                                  o.radius = radius;
-                                  return evsm(ctx, table, f.receivers.light_uvz, o);
-                              }});
-    return m;
+    const double physical = reference::light_size(scene);
+    const double largest = 252.0 / map_size;
+    std::vector<SweepPoint> sweep;
+    for (double scale : {0.5, 1.0, 2.0}) {
+        MethodSettings s;
+        s.light_size = float(std::min(physical * scale, largest));
+        s.depth_bias = depth_bias;
+        sweep.push_back({format("L=%.3g", s.light_size), s});
+    }
+    return sweep;
 }
 
 // Distance-field shadows trace the scene itself, not the shadow map: the
@@ -126,7 +109,7 @@ private:
 
 DemoMethod sdf_method(const reference::Scene& scene, int map_size, bool analytic)
 {
-    DemoMethod m{analytic ? "sdf-analytic" : "sdf", {}, 0};
+    DemoMethod m{analytic ? "sdf-analytic" : "sdf", {}, kFirstSetting};
     const std::size_t nodes = map_size >= 1024 ? reference::kSdfGridNodes : reference::kSdfGridNodes / 8;
     // Baked on first use: listing the methods (to check --method, to count the
     // work) must not cost a bake per scene, seconds each.
@@ -166,7 +149,7 @@ Image blurred(Context& ctx, const DemoFrame& f, const Image& visibility)
 
 DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vector<int> keep)
 {
-    DemoMethod m{name, {}, 0};
+    DemoMethod m{name, {}, kFirstSetting};
     for (int index : keep) {
         DemoSetting inner = source.settings[std::size_t(index)];
         m.settings.push_back({inner.label + " +blur", [inner](Context& ctx, const DemoFrame& f) {
@@ -181,13 +164,14 @@ DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vecto
 std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size)
 {
     DemoMethod sdf_grid = sdf_method(scene, map_size, false);
-    return {vsm_method(),
-            blurred_method(vsm_method(), "vsm+blur", {0, 1}),
-            vssm_method(scene, map_size),
-            msm_method(),
-            msm_soft_method(scene, map_size),
-            evsm_method(2),
-            evsm_method(4),
+    const DemoMethod vsm = table_method("vsm", radius_sweep());
+    return {vsm,
+            blurred_method(vsm, "vsm+blur", {0, 1}),
+            table_method("vssm", light_sweep(scene, map_size)),
+            table_method("msm", radius_sweep(kDemoMsmDepthBias)),
+            table_method("msm-soft", light_sweep(scene, map_size, kDemoMsmDepthBias)),
+            table_method("evsm2", radius_sweep()),
+            table_method("evsm4", radius_sweep()),
             sdf_grid,
             blurred_method(sdf_grid, "sdf+blur", {0}),
             sdf_method(scene, map_size, true)};

@@ -15,31 +15,62 @@
 #include "input_limits.h"
 #include "sdf_command.h"
 #include "penumbra/error.h"
+#include "penumbra/methods.h"
 
 namespace {
 
-const char* kUsage =
-    "penumbra: shadow-filtering kernels on SIMD CPUs and OpenCL\n"
-    "\n"
-    "usage: penumbra <command> [options]\n"
-    "  info [--json] [--verbose]   backends, the one Auto chooses and why, CPU ISAs, OpenCL devices\n"
-    "  shade --method vsm|vssm|msm|msm-soft|evsm2|evsm4 --shadow-map SM.exr --receivers RX.exr --out OUT.exr [options]\n"
-    "                              filter a shadow map for a set of receivers (shade --help)\n"
-    "  example --out DIR           write a small synthetic shadow map and receivers to DIR\n"
-    "  render-scene NAME --shadow-map SM.exr --receivers RX.exr --truth GT.exr [options]\n"
-    "                              a reference scene and its ray-traced ground truth\n"
-    "  demo [--quick] [--out DIR]  every method on every scene: images, CSV, time-vs-error chart\n"
-    "  blur --in MASK.exr --guide DEPTH.exr --out OUT.exr [options]\n"
-    "                              cross-bilateral blur of a mask, stopping at depth edges (blur --help)\n"
-    "  sdf-shade (--scene S | --grid G) --receivers RX.exr --out OUT.exr [options]\n"
-    "                              sphere-traced distance-field soft shadows (sdf-shade --help)\n"
-    "  sdf-bake --scene S --out GRID.pnsdf [--voxel V]  a scene's distance grid, for sdf-shade --grid\n"
-    "\n"
-    "Every command that reads images takes --max-pixels N (default 268435456 = 16384^2): a larger\n"
-    "data window is refused before anything is allocated.\n"
-    "\n"
-    "Environment: PENUMBRA_BACKEND=auto|simd|opencl|scalar overrides Auto;\n"
-    "PENUMBRA_SIMD_ISA=sse4.2|avx2|avx512 forces an ISA.\n";
+struct Command {
+    std::string name;
+    std::string arguments;  // the usage line after the name
+    std::string summary;
+    int (*run)(const std::vector<std::string>& args);
+};
+
+// The commands: dispatch and the usage text both come from this table.
+const std::vector<Command>& commands()
+{
+    using namespace penumbra::cli;
+    static const std::vector<Command> table = {
+        {"info", "[--json] [--verbose]", "backends, the one Auto chooses and why, CPU ISAs, OpenCL devices",
+         info_command},
+        {"shade",
+         "--method " + penumbra::method_names("|") + " --shadow-map SM.exr --receivers RX.exr --out OUT.exr [options]",
+         "filter a shadow map for a set of receivers (shade --help)", shade_command},
+        {"example", "--out DIR", "write a small synthetic shadow map and receivers to DIR", example_command},
+        {"render-scene", "NAME --shadow-map SM.exr --receivers RX.exr --truth GT.exr [options]",
+         "a reference scene and its ray-traced ground truth", render_scene_command},
+        {"demo", "[--quick] [--out DIR]", "every method on every scene: images, CSV, time-vs-error chart",
+         demo_command},
+        {"blur", "--in MASK.exr --guide DEPTH.exr --out OUT.exr [options]",
+         "cross-bilateral blur of a mask, stopping at depth edges (blur --help)", blur_command},
+        {"sdf-shade", "(--scene S | --grid G) --receivers RX.exr --out OUT.exr [options]",
+         "sphere-traced distance-field soft shadows (sdf-shade --help)", sdf_shade_command},
+        {"sdf-bake", "--scene S --out GRID.pnsdf [--voxel V]", "a scene's distance grid, for sdf-shade --grid",
+         sdf_bake_command},
+    };
+    return table;
+}
+
+// A command's line and summary; the summary starts at column 30, on the
+// next line when the usage is longer.
+std::string usage_text()
+{
+    constexpr std::size_t kSummaryColumn = 30;
+    std::string text = "penumbra: shadow-filtering kernels on SIMD CPUs and OpenCL\n\nusage: penumbra <command> [options]\n";
+    for (const Command& c : commands()) {
+        std::string line = "  " + c.name + " " + c.arguments;
+        if (line.size() + 1 < kSummaryColumn) line.resize(kSummaryColumn, ' ');
+        else line += "\n" + std::string(kSummaryColumn, ' ');
+        text += line + c.summary + "\n";
+    }
+    return text +
+           "\n"
+           "Every command that reads images takes --max-pixels N (default 268435456 = 16384^2): a larger\n"
+           "data window is refused before anything is allocated.\n"
+           "\n"
+           "Environment: PENUMBRA_BACKEND=auto|simd|opencl|scalar overrides Auto;\n"
+           "PENUMBRA_SIMD_ISA=sse4.2|avx2|avx512 forces an ISA.\n";
+}
 
 std::string one_line(std::string text)
 {
@@ -78,14 +109,8 @@ int run(const std::string& command, std::vector<std::string> args)
 {
     if (asks_for_help(args)) args = {"--help"};
     else take_max_pixels(args);
-    if (command == "info") return penumbra::cli::info_command(args);
-    if (command == "shade") return penumbra::cli::shade_command(args);
-    if (command == "example") return penumbra::cli::example_command(args);
-    if (command == "render-scene") return penumbra::cli::render_scene_command(args);
-    if (command == "demo") return penumbra::cli::demo_command(args);
-    if (command == "blur") return penumbra::cli::blur_command(args);
-    if (command == "sdf-shade") return penumbra::cli::sdf_shade_command(args);
-    if (command == "sdf-bake") return penumbra::cli::sdf_bake_command(args);
+    for (const Command& c : commands())
+        if (c.name == command) return c.run(args);
     std::cerr << "penumbra: unknown command '" << command << "' (see penumbra --help)\n";
     return 2;
 }
@@ -100,7 +125,7 @@ int main(int argc, char** argv)
         return 2;
     }
     if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
-        std::cout << kUsage;
+        std::cout << usage_text();
         return 0;
     }
     const std::string command = args[0];

@@ -4,139 +4,120 @@
 //   OUT.exr one float channel Y: visibility in [0, 1] on the receivers' grid
 // Output is written atomically: a failed run leaves no partial file and an
 // existing OUT.exr untouched.
+//
+// Methods, their options and every check of an option's value are the
+// library's method table (penumbra/methods.h); this file reads the files,
+// runs the entry and names, for an error, the flag or file at fault.
 #include <cmath>
 #include <iostream>
+#include <set>
 #include <string>
 
 #include "args.h"
 #include "commands.h"
 #include "input_limits.h"
-#include "penumbra/chebyshev.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
-#include "penumbra/moment_table.h"
+#include "penumbra/methods.h"
 #include "penumbra/output_files.h"
-#include "moments_command.h"
 
 namespace penumbra::cli {
 namespace {
 
-const char* kShadeHelp =
-    "usage: penumbra shade --method vsm|vssm|msm|msm-soft|evsm2|evsm4 --shadow-map SM.exr --receivers RX.exr --out OUT.exr\n"
-    "                      [--backend auto|simd|opencl|scalar] [method options]\n"
-    "  SM.exr: float channel Z, light depth in [0, 1]; RX.exr: float channels u, v, z;\n"
-    "  OUT.exr: float channel Y, visibility in [0, 1] on the receivers' grid.\n"
-    "options:\n"
-    "  --radius R         vsm box radius in texels, window (2R+1)^2 (default 2, at most 127)\n"
-    "  --min-variance V   variance floor in depth^2 (default 2e-5), >= 0\n"
-    "  --bleed B          light-bleeding reduction in [0, 1) (default 0 = off)\n"
-    "  --light-size L     vssm: light width in texture units at the near plane (default 0.02), > 0\n"
-    "  Every method computes its own mathematics on the float32 depths (exact window sums, moments in\n"
-    "  double): within 2e-4 (vsm, vssm, evsm*) / 1e-3 (msm*) of its float64 evaluation (docs/moments.md).\n"
-    "  --quantize 16      msm, msm-soft: store the I3D 2015 optimized 16-bit quantization (16 B/texel\n"
-    "                     instead of 48); faithful to its dequantized moments, but the quantization\n"
-    "                     itself moves visibility: worst 0.56, p99 up to 0.017, up to 5% of receivers\n"
-    "                     beyond 1e-2 against the default (docs/moments.md, \"16-bit quantization\")\n"
-    "  --moment-bias A    msm, msm-soft: share of each window moved to depths 0 and 1, in [0, 1) (6e-5)\n"
-    "  --depth-bias D     msm*, evsm*: subtracted from receiver depth, in [0, 1); msm default: two 16-bit\n"
-    "                     depth steps (3.05e-5); sloped receivers need about half a texel's depth change\n"
-    "                     more; evsm default 0\n"
-    "  --exponents P,N    evsm4 warp exponents (evsm2: P), each in (0, 10] (defaults 10,5; above 10 the\n"
-    "                     exact 48-bit storage could not keep 2e-4). --radius, --min-variance and --bleed\n"
-    "                     apply to evsm2/evsm4 too, --radius to msm, --light-size to msm-soft\n"
-    "  --backend B        auto (default), simd, opencl or scalar\n";
-
-// Names the file, the channel and the first bad pixel.
-void check_channel(const Image& image, int c, const std::string& file, const std::string& channel, bool unit_range)
+std::string shade_help()
 {
-    for (int y = 0; y < image.height(); ++y)
-        for (int x = 0; x < image.width(); ++x) {
-            const float v = image.at(c, x, y);
-            const std::string where = file + ": channel " + channel + " at pixel (" + std::to_string(x) + ", " +
-                                      std::to_string(y) + ")";
-            if (!std::isfinite(v))
-                throw Error(ErrorCategory::InvalidData, "shade", where + " is " + std::to_string(v) +
-                                                                     "; NaN and infinite values are not accepted");
-            if (unit_range && (v < 0.0f || v > 1.0f))
-                throw Error(ErrorCategory::InvalidData, "shade",
-                            where + " is " + std::to_string(v) + ", outside [0, 1]; depths must be normalised");
-        }
+    return "usage: penumbra shade --method " + method_names("|") +
+           " --shadow-map SM.exr --receivers RX.exr --out OUT.exr\n"
+           "                      [--backend auto|simd|opencl|scalar] [method options]\n"
+           "  SM.exr: float channel Z, light depth in [0, 1]; RX.exr: float channels u, v, z;\n"
+           "  OUT.exr: float channel Y, visibility in [0, 1] on the receivers' grid.\n"
+           "  Every method computes its own mathematics on the float32 depths (exact window sums, moments in\n"
+           "  double): within 2e-4 (vsm, vssm, evsm*) / 1e-3 (msm*) of its float64 evaluation (docs/moments.md).\n"
+           "methods:\n" +
+           methods_help() + "options:\n" + method_options_help("--") +
+           "  --backend B        auto (default), simd, opencl or scalar\n";
 }
 
-Image read_shadow_map(const std::string& path)
+std::set<std::string> shade_flags()
 {
-    Image map = read_exr(path, {"Z"}, exr_limits());
-    if (map.empty()) throw Error(ErrorCategory::InvalidData, "shade", path + ": the shadow map is empty");
-    check_channel(map, 0, path, "Z", true);
-    return map;
+    std::set<std::string> flags = {"--method", "--shadow-map", "--receivers", "--out", "--backend"};
+    for (const MethodOption& o : method_options()) flags.insert(std::string("--") + o.name);
+    return flags;
 }
 
-Image read_receivers(const std::string& path)
+// The method options given, as (name, text) pairs for the method table.
+std::vector<std::pair<std::string, std::string>> given_options(const Args& args)
 {
-    Image rx = read_exr(path, {"u", "v", "z"}, exr_limits());
-    if (rx.empty()) throw Error(ErrorCategory::InvalidData, "shade", path + ": the receivers image is empty");
-    const char* names[] = {"u", "v", "z"};
-    for (int c = 0; c < 3; ++c) check_channel(rx, c, path, names[c], false);
-    return rx;
+    std::vector<std::pair<std::string, std::string>> given;
+    for (const MethodOption& o : method_options())
+        if (const auto text = args.get(std::string("--") + o.name)) given.emplace_back(o.name, *text);
+    return given;
 }
 
-void check_options(const std::string& method, int radius, float min_variance, float bleed, float light_size)
+struct ShadeFiles {
+    std::string shadow_map, receivers;
+};
+
+// The library names the parameter at fault; the user knows flags and files.
+// A bad value in an image is named by file, channel and pixel.
+[[noreturn]] void rethrow_naming_flag_or_file(const Error& e, const ShadeFiles& files)
 {
-    if (method != "vsm" && method != "vssm" && !is_moment_method(method))
-        throw UsageError{"option --method: '" + method + "' is not vsm, vssm, msm, msm-soft, evsm2 or evsm4"};
-    if (radius < 0) throw UsageError{"option --radius: must be >= 0 (got " + std::to_string(radius) + ")"};
-    if (min_variance < 0.0f) throw UsageError{"option --min-variance: must be >= 0"};
-    if (bleed < 0.0f || bleed >= 1.0f) throw UsageError{"option --bleed: must be in [0, 1)"};
-    if (light_size <= 0.0f) throw UsageError{"option --light-size: must be > 0"};
+    const bool is_map = e.parameter() == "depth", is_receivers = e.parameter() == "receivers";
+    if (!is_map && !is_receivers) {
+        if (e.parameter().empty()) throw e;
+        const MethodOption* option = option_for_parameter(e.parameter());
+        throw UsageError{"option --" + (option ? std::string(option->name) : e.parameter()) + ": " + e.message()};
+    }
+    const std::string& path = is_map ? files.shadow_map : files.receivers;
+    if (!e.pixel()) throw Error(e.category(), "shade", path + ": " + e.message());
+    static const char* const kReceiverChannels[] = {"u", "v", "z"};
+    const BadPixel& bad = *e.pixel();
+    const std::string where = path + ": channel " + (is_map ? "Z" : kReceiverChannels[bad.channel % 3]) +
+                              " at pixel (" + std::to_string(bad.x) + ", " + std::to_string(bad.y) + ") is " +
+                              std::to_string(bad.value);
+    throw Error(ErrorCategory::InvalidData, "shade",
+                where + (std::isfinite(bad.value) ? ", outside [0, 1]; depths must be normalised"
+                                                  : "; NaN and infinite values are not accepted"));
+}
+
+Image read_input(const std::string& path, const std::vector<std::string>& channels, const char* what)
+{
+    Image image = read_exr(path, channels, exr_limits());
+    if (image.empty()) throw Error(ErrorCategory::InvalidData, "shade", path + ": the " + what + " is empty");
+    return image;
 }
 
 }  // namespace
 
 int shade_command(const std::vector<std::string>& argv)
 {
-    const Args args(argv,
-                    {"--method", "--shadow-map", "--receivers", "--out", "--backend", "--radius", "--min-variance",
-                     "--bleed", "--light-size", kMomentOptionNames[0], kMomentOptionNames[1],
-                     kMomentOptionNames[2], kMomentOptionNames[3]},
-                    {"--help"});
+    const Args args(argv, shade_flags(), {"--help"});
     if (args.flag("--help")) {
-        std::cout << kShadeHelp;
+        std::cout << shade_help();
         return 0;
     }
-    const std::string method = args.required("--method");
-    const std::string sm_path = args.required("--shadow-map");
-    const std::string rx_path = args.required("--receivers");
+    const ShadeFiles files{args.required("--shadow-map"), args.required("--receivers")};
+    const std::string method_name = args.required("--method");
     const std::string out_path = args.required("--out");
-    require_safe_outputs({out_path}, {sm_path, rx_path}, "shade");
-    const int radius = args.integer("--radius", VsmOptions{}.radius);
-    const float min_variance = args.number("--min-variance", kDefaultMinVariance);
-    const float bleed = args.number("--bleed", 0.0f);
-    const float light_size = args.number("--light-size", VssmOptions{}.light_size);
-    check_options(method, radius, min_variance, bleed, light_size);
+    require_safe_outputs({out_path}, {files.shadow_map, files.receivers}, "shade");
     Backend backend;
     try {
         backend = parse_backend(args.text("--backend", "auto"));
     } catch (const Error& e) {
         throw UsageError{std::string(e.what())};
     }
-    std::optional<MomentShadeSettings> moments;
-    if (is_moment_method(method)) moments = parse_moment_settings(method, args);
-    else if (args.get("--moment-bias") || args.get("--depth-bias") || args.get("--quantize") || args.get("--exponents"))
-        throw UsageError{"options --moment-bias, --depth-bias, --quantize and --exponents apply to msm, msm-soft, "
-                         "evsm2 and evsm4"};
-
-    const Image map = read_shadow_map(sm_path);
-    const Image receivers = read_receivers(rx_path);
-    Context context(ContextOptions{backend, {}});
-    for (const std::string& warning : context.warnings()) std::cerr << "penumbra shade: warning: " << warning << "\n";
-    if (moments) {
-        write_exr(out_path, shade_moments(context, *moments, map, receivers), {"Y"});
-        return 0;
+    try {
+        const Method& method = find_method(method_name);
+        const MethodSettings settings = parse_method_settings(method, given_options(args));
+        const Image map = read_input(files.shadow_map, {"Z"}, "shadow map");
+        const Image receivers = read_input(files.receivers, {"u", "v", "z"}, "receivers image");
+        Context context(ContextOptions{backend, {}});
+        for (const std::string& warning : context.warnings())
+            std::cerr << "penumbra shade: warning: " << warning << "\n";
+        write_exr(out_path, method.run(context, map, receivers, settings), {"Y"});
+    } catch (const Error& e) {
+        rethrow_naming_flag_or_file(e, files);
     }
-    const MomentTable table = build_moment_table(context, map, 2);
-    const Image visibility = method == "vsm" ? vsm(context, table, receivers, VsmOptions{radius, min_variance, bleed})
-                                             : vssm(context, table, receivers, VssmOptions{light_size, min_variance, bleed});
-    write_exr(out_path, visibility, {"Y"});
     return 0;
 }
 

@@ -116,10 +116,10 @@ Context::Context(ContextOptions options)
         }
         impl_ = make_simd(options);
         backend_ = Backend::Simd;
-        if (reason_.empty())
-            reason_ = warnings_.empty() ? "auto: no non-CPU OpenCL device, so the SIMD backend (faster than an "
-                                          "OpenCL CPU driver on the same cores)"
-                                        : "auto: fell back to SIMD after the OpenCL device failed";
+        // Only the OpenCL start above can have left a warning by now.
+        reason_ = warnings_.empty() ? "auto: no non-CPU OpenCL device, so the SIMD backend (faster than an "
+                                      "OpenCL CPU driver on the same cores)"
+                                    : "auto: fell back to SIMD after the OpenCL device failed";
         break;
     }
 }

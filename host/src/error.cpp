@@ -23,13 +23,30 @@ static std::string compose(std::string_view operation, std::string_view message)
 }
 
 Error::Error(ErrorCategory category, std::string_view operation, std::string_view message)
-    : std::runtime_error(compose(operation, message)), category_(category), operation_(operation)
+    : Error(category, operation, {}, message)
 {
+}
+
+Error::Error(ErrorCategory category, std::string_view operation, std::string_view parameter,
+             std::string_view message, std::optional<BadPixel> pixel)
+    : std::runtime_error(compose(operation, message)), category_(category), operation_(operation),
+      parameter_(parameter), message_(message), pixel_(pixel)
+{
+}
+
+Error Error::as_operation(std::string_view operation) const
+{
+    return Error(category_, operation, parameter_, message_, pixel_);
 }
 
 void require(bool condition, std::string_view operation, std::string_view message)
 {
     if (!condition) throw Error(ErrorCategory::InvalidArgument, operation, message);
+}
+
+void require(bool condition, std::string_view operation, std::string_view parameter, std::string_view message)
+{
+    if (!condition) throw Error(ErrorCategory::InvalidArgument, operation, parameter, message);
 }
 
 }  // namespace penumbra

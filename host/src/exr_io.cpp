@@ -7,6 +7,7 @@
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfThreading.h>
 #include <OpenEXR/ImfVersion.h>
 
 #include <Imath/ImathBox.h>
@@ -14,6 +15,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <climits>
@@ -21,9 +23,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <sstream>
 #include <system_error>
+#include <thread>
 #include <utility>
 
 #include "exr_validate.h"
@@ -270,9 +274,18 @@ Imf::Header float_header(const Image& image, const std::vector<std::string>& cha
     return header;
 }
 
+// OpenEXR compresses (and Imf decodes) chunks on its own thread pool, which
+// is empty unless asked for (issue 10: a 2048^2 output written on one thread).
+void use_hardware_threads_for_exr()
+{
+    static std::once_flag once;
+    std::call_once(once, [] { Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency()))); });
+}
+
 void write_exr_pixels(const std::string& temporary_path, const Image& image,
                       const std::vector<std::string>& channels)
 {
+    use_hardware_threads_for_exr();
     const Imf::Header header = float_header(image, channels);
     CheckedOutputStream stream(temporary_path);
     {
@@ -322,6 +335,7 @@ Image read_exr(const std::string& path, const std::vector<std::string>& channels
     // cannot decode, check the chunks' table entries, then read with Imf.
     if (detail::decode_exr(exr.file, channels, image, operation)) return image;
     detail::validate_exr(exr.file, limits, operation, detail::ChunkCheck::DecodeEvery);
+    use_hardware_threads_for_exr();
     translating_exr_exceptions(operation, path, kReadAdvice, [&] {
         file->setFrameBuffer(frame_buffer_over(image, channels, window));
         file->readPixels(window.min.y, window.max.y);

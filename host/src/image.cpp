@@ -122,14 +122,31 @@ NonFinite find_non_finite(const Image& image)
     return {};
 }
 
-void require_finite(const Image& image, const std::string& operation, const std::string& what)
+void require_finite(const Image& image, const std::string& operation, const std::string& what,
+                    const std::string& parameter)
 {
     const NonFinite bad = find_non_finite(image);
     if (!bad.found) return;
-    throw Error(ErrorCategory::InvalidData, operation,
+    throw Error(ErrorCategory::InvalidData, operation, parameter,
                 what + " has a non-finite value (" + std::to_string(bad.value) + ") in channel " +
                     std::to_string(bad.channel) + " at pixel (" + std::to_string(bad.x) + ", " +
-                    std::to_string(bad.y) + "); replace NaN/infinite values before filtering");
+                    std::to_string(bad.y) + "); replace NaN/infinite values before filtering",
+                BadPixel{bad.channel, bad.x, bad.y, bad.value});
+}
+
+void require_unit_depths(const Image& depth, const std::string& operation)
+{
+    require_finite(depth, operation, "the shadow map", "depth");
+    for (int y = 0; y < depth.height(); ++y) {
+        const float* row = depth.row(0, y);
+        for (int x = 0; x < depth.width(); ++x)
+            if (row[x] < 0.0f || row[x] > 1.0f)
+                throw Error(ErrorCategory::InvalidData, operation, "depth",
+                            "shadow-map depth " + std::to_string(row[x]) + " at (" + std::to_string(x) + ", " +
+                                std::to_string(y) +
+                                ") is outside [0, 1]; store linear light depth normalised to [0, 1]",
+                            BadPixel{0, x, y, row[x]});
+    }
 }
 
 }  // namespace penumbra

@@ -137,26 +137,9 @@ double MomentTable::box_sum(int k, int x0, int x1, int y0, int y1) const
 static void check_depth_map_shape(const Image& depth)
 {
     const std::string op = "build_moment_table";
-    require(!depth.empty(), op, "the shadow map is empty (0 pixels)");
-    require(depth.channels() == 1, op,
+    require(!depth.empty(), op, "depth", "the shadow map is empty (0 pixels)");
+    require(depth.channels() == 1, op, "depth",
             "the shadow map must have one channel (depth), got " + std::to_string(depth.channels()));
-}
-
-// The kernels flag rows with depths outside [0, 1]; this finds and reports the
-// first one. Only runs when a row was flagged.
-static void report_bad_depth(const Image& depth)
-{
-    const std::string op = "build_moment_table";
-    require_finite(depth, op, "the shadow map");
-    for (int y = 0; y < depth.height(); ++y)
-        for (int x = 0; x < depth.width(); ++x) {
-            const float z = depth.at(0, x, y);
-            if (z < 0.0f || z > 1.0f)
-                throw Error(ErrorCategory::InvalidData, op,
-                            "shadow-map depth " + std::to_string(z) + " at (" + std::to_string(x) + ", " +
-                                std::to_string(y) + ") is outside [0, 1]; store linear light depth normalised "
-                                                    "to [0, 1]");
-        }
 }
 
 // Builds, then reports the first bad depth if a kernel flagged one. The table
@@ -165,7 +148,7 @@ static void build_checked(Context& context, const Image& depth, MomentTable& tab
 {
     std::vector<int> bad_rows(std::size_t(depth.height()), 0);
     context.impl().build_moment_table(depth, table, bad_rows.data());
-    if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end()) report_bad_depth(depth);
+    if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end()) require_unit_depths(depth, "build_moment_table");
 }
 
 MomentTable build_moment_table(Context& context, const Image& depth, int moments, Precision precision)

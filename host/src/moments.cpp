@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "backend.h"
+#include "window_limits.h"
 #include "penumbra/error.h"
+#include "penumbra/parameter_range.h"
 
 namespace penumbra {
 namespace {
@@ -17,28 +19,14 @@ using detail::BackendImpl;
 
 bool any_flagged(const std::vector<int>& rows) { return std::find(rows.begin(), rows.end(), 1) != rows.end(); }
 
-std::string number(float v) { return std::to_string(v); }
 
 // ---- tables ------------------------------------------------------------------
 
 void check_depth_map(const std::string& op, const Image& depth)
 {
-    require(!depth.empty(), op, "the shadow map is empty (0 pixels)");
-    require(depth.channels() == 1, op,
+    require(!depth.empty(), op, "depth", "the shadow map is empty (0 pixels)");
+    require(depth.channels() == 1, op, "depth",
             "the shadow map must have one channel (depth), got " + std::to_string(depth.channels()));
-}
-
-void report_bad_depth(const std::string& op, const Image& depth)
-{
-    require_finite(depth, op, "the shadow map");
-    for (int y = 0; y < depth.height(); ++y)
-        for (int x = 0; x < depth.width(); ++x) {
-            const float z = depth.at(0, x, y);
-            if (z < 0.0f || z > 1.0f)
-                throw Error(ErrorCategory::InvalidData, op,
-                            "shadow-map depth " + number(z) + " at (" + std::to_string(x) + ", " + std::to_string(y) +
-                                ") is outside [0, 1]; store linear light depth normalised to [0, 1]");
-        }
 }
 
 void check_storage(const std::string& op, Quantization quantization, Precision precision)
@@ -58,7 +46,7 @@ MomentTable build_encoded(Context& context, const std::string& op, const Image& 
     p.table = detail::dims_of(table);
     std::vector<int> bad_rows(std::size_t(depth.height()), 0);
     context.impl().build_encoded_table(depth, p, table, bad_rows.data());
-    if (any_flagged(bad_rows)) report_bad_depth(op, depth);
+    if (any_flagged(bad_rows)) require_unit_depths(depth, op);
     return table;
 }
 
@@ -73,30 +61,31 @@ MomentTable moment_table_as(Context& context, const std::string& op, const Image
         build_moment_table(context, depth, table);
         return table;
     } catch (const Error& e) {
-        const std::string text = e.what();
-        const std::size_t prefix = e.operation().size() + 2;  // "operation: "
-        throw Error(e.category(), op, text.size() > prefix ? text.substr(prefix) : text);
+        throw e.as_operation(op);
     }
 }
 
-float max_exponent(Quantization q)
+// The exact storage's range is the declared one; the other storages move its
+// upper bound (penumbra/moments.h derives each).
+ParameterRange exponent_range(Quantization q, bool positive)
 {
-    if (q == Quantization::None) return kEvsmMaxExponentExact;
-    return q == Quantization::Bits16 ? kEvsmMaxExponent16 : kEvsmMaxExponent32;
+    ParameterRange range = positive ? kPositiveExponentRange : kNegativeExponentRange;
+    if (q == Quantization::Bits16) {
+        range.high = kEvsmMaxExponent16;
+        range.why_high = ", the largest the 16-bit storage holds (its squared warp e^(-2c) would round to 0); use a "
+                         "smaller exponent";
+    } else if (q == Quantization::Bits32) {
+        range.high = kEvsmMaxExponent32;
+        range.why_high = ", the largest the float storage holds (its squared warp e^(-2c) would leave the normal "
+                         "float range); use a smaller exponent";
+    }
+    return range;
 }
 
 float checked_exponent(const std::string& op, std::optional<float> value, Quantization q, bool positive)
 {
     const float c = value.value_or(default_evsm_exponent(q, positive));
-    const std::string name = positive ? "positive exponent" : "negative exponent";
-    require(std::isfinite(c) && c > 0.0f, op, name + " must be > 0 (got " + number(c) + ")");
-    require(c <= max_exponent(q), op,
-            name + " " + number(c) + " exceeds " + number(max_exponent(q)) + ", the largest the " +
-                (q == Quantization::None ? "exact 48-bit storage keeps within 2e-4 of the method (docs/moments.md)"
-                 : q == Quantization::Bits16 ? "16-bit storage holds (its squared warp e^(-2c) would round to 0)"
-                                             : "float storage holds (its squared warp e^(-2c) would leave the normal "
-                                               "float range)") +
-                "; use a smaller exponent");
+    check(exponent_range(q, positive), c, op);
     return c;
 }
 
@@ -104,7 +93,7 @@ float checked_exponent(const std::string& op, std::optional<float> value, Quanti
 
 void check_receivers(const std::string& op, const Image& receivers, const Image& out)
 {
-    require(!receivers.empty(), op, "the receivers image is empty (0 pixels)");
+    require(!receivers.empty(), op, "receivers", "the receivers image is empty (0 pixels)");
     require(receivers.channels() == 3, op,
             "receivers must have 3 channels (u, v, z), got " + std::to_string(receivers.channels()));
     require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), op,
@@ -120,21 +109,10 @@ void check_table(const std::string& op, const MomentTable& sums, int channels)
                 std::to_string(channels));
 }
 
-void check_radius(const std::string& op, int radius, Precision precision)
-{
-    require(radius >= 0, op, "radius must be >= 0 (got " + std::to_string(radius) + ")");
-    if (precision == Precision::Exact)
-        require(radius <= kExactMaxRadius, op,
-                "radius " + std::to_string(radius) + " exceeds " + std::to_string(kExactMaxRadius) +
-                    ", the largest window (255x255 texels) whose sums an exact table keeps exact; use precision "
-                    "float or a smaller radius");
-}
-
 // A bias is a share of the depth range or of the window: [0, 1).
-float checked_bias(const std::string& op, const std::string& name, float value)
+float checked_bias(const std::string& op, const ParameterRange& range, float value)
 {
-    require(std::isfinite(value) && value >= 0.0f && value < 1.0f, op,
-            name + " must be in [0, 1) (got " + number(value) + ")");
+    check(range, value, op);
     return value;
 }
 
@@ -163,8 +141,8 @@ void set_msm_biases(MomentParams& p, const std::string& op, Quantization q, std:
                     std::optional<float> depth_bias)
 {
     p.storage = q == Quantization::Bits16 ? PN_MOMENTS_OPTIMIZED16 : PN_MOMENTS_POWER;
-    p.moment_bias = checked_bias(op, "moment-bias", moment_bias.value_or(default_moment_bias(q)));
-    p.depth_bias = checked_bias(op, "depth-bias", depth_bias.value_or(default_depth_bias(q)));
+    p.moment_bias = checked_bias(op, kMomentBiasRange, moment_bias.value_or(default_moment_bias(q)));
+    p.depth_bias = checked_bias(op, kDepthBiasRange, depth_bias.value_or(default_depth_bias(q)));
     p.pivot_floor = pivot_floor(q);
 }
 
@@ -173,7 +151,7 @@ void run_checked(Context& context, BackendImpl::MomentMethod method, const std::
 {
     std::vector<int> bad_rows(std::size_t(receivers.height()), 0);
     context.impl().moment_lookup(method, sums, receivers, p, out, bad_rows.data());
-    if (any_flagged(bad_rows)) require_finite(receivers, op, "the receivers image");
+    if (any_flagged(bad_rows)) require_finite(receivers, op, "the receivers image", "receivers");
 }
 
 }  // namespace
@@ -278,7 +256,7 @@ void msm(Context& context, const MsmTable& table, const Image& receivers, const 
     const std::string op = "msm";
     check_table(op, table.sums, 4);
     check_receivers(op, receivers, out);
-    check_radius(op, options.radius, table.sums.precision());
+    detail::check_radius(op, options.radius, table.sums.precision());
     MomentParams p = base_params(table.sums, receivers, out);
     set_msm_biases(p, op, table.quantization, options.moment_bias, options.depth_bias);
     p.radius = options.radius;
@@ -291,20 +269,7 @@ void msm_soft(Context& context, const MsmTable& table, const Image& receivers, c
     const std::string op = "msm_soft";
     check_table(op, table.sums, 4);
     check_receivers(op, receivers, out);
-    require(std::isfinite(options.light_size) && options.light_size > 0.0f, op,
-            "light-size must be > 0 (got " + number(options.light_size) + ")");
-    // As VSSM's (host/src/chebyshev.cpp): the filter window is clamped to
-    // max_radius; an exact table needs it and its one-texel slivers within 255.
-    const bool exact = table.sums.precision() == Precision::Exact;
-    const int extent = std::max(table.sums.width(), table.sums.height());
-    const int max_radius = exact ? kExactMaxRadius - 1 : extent;
-    if (exact) {
-        const float search_half = options.light_size * 0.5f * float(extent);
-        require(search_half <= float(max_radius), op,
-                "light-size " + number(options.light_size) + " needs a blocker search of " +
-                    std::to_string(int(std::ceil(2 * search_half))) +
-                    " texels, more than an exact table keeps exact (253); use precision float or a smaller light");
-    }
+    const int max_radius = detail::checked_search_radius(op, options.light_size, table.sums);
     MomentParams p = base_params(table.sums, receivers, out);
     set_msm_biases(p, op, table.quantization, options.moment_bias, options.depth_bias);
     p.light_size = options.light_size;
@@ -328,11 +293,9 @@ void evsm(Context& context, const EvsmTable& table, const Image& receivers, cons
             "the table's channels must be 2 or 4, got " + std::to_string(table.channels));
     check_table(op, table.sums, table.channels);
     check_receivers(op, receivers, out);
-    check_radius(op, options.radius, table.sums.precision());
-    require(std::isfinite(options.min_variance) && options.min_variance >= 0.0f, op,
-            "min-variance must be a finite value >= 0 (got " + number(options.min_variance) + ")");
-    require(std::isfinite(options.bleed) && options.bleed >= 0.0f && options.bleed < 1.0f, op,
-            "bleed must be in [0, 1) (got " + number(options.bleed) + ")");
+    detail::check_radius(op, options.radius, table.sums.precision());
+    check(kMinVarianceRange, options.min_variance, op);
+    check(kBleedRange, options.bleed, op);
     MomentParams p = base_params(table.sums, receivers, out);
     p.channels = table.channels;
     p.exponent_positive = checked_exponent(op, table.positive, table.quantization, true);
@@ -340,7 +303,7 @@ void evsm(Context& context, const EvsmTable& table, const Image& receivers, cons
     p.radius = options.radius;
     p.min_variance = options.min_variance;
     p.bleed = options.bleed;
-    p.depth_bias = checked_bias(op, "depth-bias", options.depth_bias);
+    p.depth_bias = checked_bias(op, kDepthBiasRange, options.depth_bias);
     run_checked(context, BackendImpl::MomentMethod::Evsm, op, table.sums, receivers, p, out);
 }
 

@@ -94,7 +94,12 @@ struct NonFinite {
 NonFinite find_non_finite(const Image& image);
 
 // Throws Error(InvalidData) naming `what` (e.g. "shadow map") and the first
-// offending pixel if any value is NaN or infinite.
-void require_finite(const Image& image, const std::string& operation, const std::string& what);
+// offending pixel if any value is NaN or infinite; the error's parameter() is
+// `parameter` and its pixel() the value.
+void require_finite(const Image& image, const std::string& operation, const std::string& what,
+                    const std::string& parameter = {});
+// The same for a depth map (parameter "depth"), and then for the first depth
+// outside [0, 1]. For the report after a kernel flagged a row: it scans.
+void require_unit_depths(const Image& depth, const std::string& operation);
 
 }  // namespace penumbra

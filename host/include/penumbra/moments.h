@@ -28,6 +28,7 @@
 #include "penumbra/context.h"
 #include "penumbra/image.h"
 #include "penumbra/moment_table.h"
+#include "penumbra/parameter_range.h"
 
 namespace penumbra {
 
@@ -109,7 +110,7 @@ inline constexpr float kEvsmMaxExponent32 = 42.0f;
 // min_variance (c w)^2 at the smallest warp e^-c must stay far above the
 // storage's 1.8e-15: the bound's error 1.8e-15 / (4 x 2e-5 c^2 e^-2c) is
 // below 2e-4 up to c = 10.2 at the default floor (docs/moments.md).
-inline constexpr float kEvsmMaxExponentExact = 10.0f;
+inline constexpr float kEvsmMaxExponentExact = float(kPositiveExponentRange.high);
 inline constexpr float kEvsmPositiveExponentExact = 10.0f;
 inline constexpr float kEvsmNegativeExponentExact = 5.0f;
 // Defaults. Bits16: the limit for both warps. Bits32 (float tables): a float

@@ -1,0 +1,90 @@
+// The method table: every shading method of the library as one entry (name,
+// one line of description, the options it reads, a run function), and every
+// option once (name, value, default, range, help). `penumbra shade`, `penumbra
+// demo` and the benchmarks take method names, option parsing and help from
+// here, and nowhere else (docs/architecture.md, "Adding a method").
+//
+// An option's name is also the library's parameter name (Error::parameter())
+// of its check: a front end maps that name to its own spelling (the CLI: --name).
+// Ranges come from penumbra/parameter_range.h, the same declarations the
+// operations check against.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "penumbra/chebyshev.h"
+#include "penumbra/context.h"
+#include "penumbra/image.h"
+#include "penumbra/moments.h"
+#include "penumbra/parameter_range.h"
+
+namespace penumbra {
+
+// The values of every option; a method reads those it lists. The defaults are
+// the operations' own (VsmOptions, MsmOptions, ...).
+struct MethodSettings {
+    int radius = VsmOptions{}.radius;
+    float min_variance = kDefaultMinVariance;
+    float bleed = 0.0f;
+    float light_size = VssmOptions{}.light_size;
+    std::optional<float> moment_bias{}, depth_bias{};  // unset: the method's default
+    Quantization quantization = Quantization::None;
+    std::optional<float> positive_exponent{}, negative_exponent{};
+};
+
+struct Method;
+
+struct MethodOption {
+    const char* name;    // "radius": the parameter its check names
+    const char* value;   // what the value looks like in help: "R", "P,N"
+    const char* help;    // one line; range, default and methods are appended by method_help()
+    const char* fallback;                   // the default, as help shows it
+    const ParameterRange* range = nullptr;  // the numeric range, when it has one
+    // Accepted, and ignored, by a method that does not read it (the shared
+    // window and filter options); any other option is refused there.
+    bool shared = false;
+    // Sets the option in `settings` from `text`; throws Error naming the
+    // parameter for text that is no value or a value out of range.
+    void (*parse)(const Method& method, const std::string& text, MethodSettings& settings) = nullptr;
+    // The parameters this option sets, when they are not just `name`.
+    std::vector<std::string_view> parameters{};
+};
+
+struct Method {
+    const char* name;      // "vsm"
+    const char* summary;   // one line
+    std::vector<std::string_view> reads;  // the options it uses, by name
+    // Builds the method's table from `map` (one channel, depth in [0, 1]) and
+    // returns visibility on the receivers' grid (`receivers`: u, v, z).
+    Image (*run)(Context& context, const Image& map, const Image& receivers, const MethodSettings& settings);
+};
+
+const std::vector<Method>& methods();
+const std::vector<MethodOption>& method_options();
+
+// Throws Error(InvalidArgument, parameter "method") naming the valid methods.
+const Method& find_method(std::string_view name);
+// The option that sets `parameter` (an Error::parameter()), or null.
+const MethodOption* option_for_parameter(std::string_view parameter);
+// The names joined by `separator`: "vsm|vssm|msm|msm-soft|evsm2|evsm4".
+std::string method_names(std::string_view separator);
+
+// Settings for `method` from (option name, text) pairs: each text parsed and
+// range-checked (the operations check the same again at run time, and what
+// depends on the map, a light too large for its table), an option the method
+// cannot use refused (shared ones are checked and ignored). Throws
+// Error(InvalidArgument) naming the option's parameter.
+MethodSettings parse_method_settings(const Method& method,
+                                     const std::vector<std::pair<std::string, std::string>>& given);
+
+// The help lines of every option: "  --radius R   box radius ...", with
+// `flag_prefix` before each name ("--" for the CLI).
+std::string method_options_help(std::string_view flag_prefix);
+// One line per method: "  vsm       variance shadow maps ...".
+std::string methods_help();
+
+}  // namespace penumbra

@@ -1,0 +1,179 @@
+// The options of the method table (penumbra/methods.h): each declared once,
+// with its parser and its help; the ranges are parameter_range.h's.
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+#include "penumbra/error.h"
+#include "penumbra/methods.h"
+
+namespace penumbra {
+namespace {
+
+Error bad_value(const Method& m, std::string_view parameter, const std::string& message)
+{
+    return Error(ErrorCategory::InvalidArgument, m.name, parameter, message);
+}
+
+float parse_float(const Method& m, std::string_view parameter, const std::string& text)
+{
+    char* end = nullptr;
+    errno = 0;
+    const float value = std::strtof(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value))
+        throw bad_value(m, parameter, "'" + text + "' is not a finite number");
+    return value;
+}
+
+// Integers beyond +-1e9 are no window anyone means; the range check names the limit.
+int parse_int(const Method& m, std::string_view parameter, const std::string& text)
+{
+    char* end = nullptr;
+    const long value = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || value < -1000000000L || value > 1000000000L)
+        throw bad_value(m, parameter, "'" + text + "' is not an integer");
+    return int(value);
+}
+
+template <int MethodSettings::*Field, const ParameterRange& Range>
+void set_int(const Method& m, const std::string& text, MethodSettings& s)
+{
+    const int value = parse_int(m, Range.name, text);
+    check(Range, value, m.name);
+    s.*Field = value;
+}
+
+template <auto Field, const ParameterRange& Range>
+void set_float(const Method& m, const std::string& text, MethodSettings& s)
+{
+    const float value = parse_float(m, Range.name, text);
+    check(Range, value, m.name);
+    s.*Field = value;
+}
+
+void set_quantization(const Method& m, const std::string& text, MethodSettings& s)
+{
+    if (text != "16") throw bad_value(m, "quantize", "'" + text + "' is not 16 (the only opt-in storage)");
+    s.quantization = Quantization::Bits16;
+}
+
+// "P,N" for evsm4; "P" for evsm2, which has no negative warp.
+void set_exponents(const Method& m, const std::string& text, MethodSettings& s)
+{
+    const std::size_t comma = text.find(',');
+    const bool two = std::string_view(m.name) == "evsm4";
+    if (!two && comma != std::string::npos)
+        throw bad_value(m, "exponents", std::string(m.name) + " has only the positive warp; give one exponent P");
+    if (two && comma == std::string::npos)
+        throw bad_value(m, "exponents", std::string(m.name) + " needs two exponents, P,N (got '" + text + "')");
+    auto exponent = [&](const std::string& part, const ParameterRange& range) {
+        char* end = nullptr;
+        const float value = std::strtof(part.c_str(), &end);
+        if (part.empty() || *end != '\0' || !(value > 0.0f) || value > 1e30f)
+            throw bad_value(m, "exponents", "'" + text + "' is not P,N with positive exponents P and N");
+        check(range, value, m.name);
+        return value;
+    };
+    s.positive_exponent = exponent(text.substr(0, comma), kPositiveExponentRange);
+    if (two) s.negative_exponent = exponent(text.substr(comma + 1), kNegativeExponentRange);
+}
+
+const MethodOption* find_option(std::string_view name)
+{
+    for (const MethodOption& o : method_options())
+        if (name == o.name) return &o;
+    return nullptr;
+}
+
+bool reads(const Method& m, std::string_view option)
+{
+    for (std::string_view name : m.reads)
+        if (name == option) return true;
+    return false;
+}
+
+// "msm and msm-soft", "msm, msm-soft, evsm2 and evsm4".
+std::string readers(std::string_view option)
+{
+    std::vector<std::string> names;
+    for (const Method& m : methods())
+        if (reads(m, option)) names.emplace_back(m.name);
+    std::string text;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        text += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
+    return text;
+}
+
+}  // namespace
+
+const std::vector<MethodOption>& method_options()
+{
+    using S = MethodSettings;
+    static const std::vector<MethodOption> options = {
+        {"radius", "R", "box radius in texels, window (2R+1)^2", "2", &kRadiusRange, true,
+         set_int<&S::radius, kRadiusRange>},
+        {"min-variance", "V", "variance floor in depth^2", "2e-5", &kMinVarianceRange, true,
+         set_float<&S::min_variance, kMinVarianceRange>},
+        {"bleed", "B", "light-bleeding reduction (0 = off)", "0", &kBleedRange, true,
+         set_float<&S::bleed, kBleedRange>},
+        {"light-size", "L", "light width in texture units at the near plane", "0.02", &kLightSizeRange, true,
+         set_float<&S::light_size, kLightSizeRange>},
+        {"moment-bias", "A", "share of each window moved to depths 0 and 1", "6e-5", &kMomentBiasRange, false,
+         set_float<&S::moment_bias, kMomentBiasRange>},
+        {"depth-bias", "D",
+         "subtracted from receiver depth (sloped ones need about half a texel's depth change more)",
+         "3.05e-5 = two 16-bit steps (msm*), 0 (evsm*)", &kDepthBiasRange, false,
+         set_float<&S::depth_bias, kDepthBiasRange>},
+        {"quantize", "16",
+         "MSM's optimized 16-bit storage (I3D 2015; 16 B/texel, not 48): moves visibility by up to 0.56",
+         "none (exact 48-bit tables)", nullptr, false, set_quantization},
+        {"exponents", "P,N", "warp exponents c+,c- (evsm2: P only); above 10 exact storage could not keep 2e-4",
+         "10,5", &kPositiveExponentRange, false, set_exponents, {"positive-exponent", "negative-exponent"}},
+    };
+    return options;
+}
+
+const MethodOption* option_for_parameter(std::string_view parameter)
+{
+    for (const MethodOption& o : method_options()) {
+        if (parameter == o.name) return &o;
+        for (std::string_view p : o.parameters)
+            if (p == parameter) return &o;
+    }
+    return nullptr;
+}
+
+MethodSettings parse_method_settings(const Method& method,
+                                     const std::vector<std::pair<std::string, std::string>>& given)
+{
+    MethodSettings settings;
+    for (const auto& [name, text] : given) {
+        const MethodOption* option = find_option(name);
+        if (!option) throw bad_value(method, name, "is not an option of the shading methods");
+        if (!option->shared && !reads(method, name))
+            throw bad_value(method, name, "applies to " + readers(name) + " only");
+        option->parse(method, text, settings);
+    }
+    return settings;
+}
+
+std::string method_options_help(std::string_view flag_prefix)
+{
+    std::string text;
+    for (const MethodOption& o : method_options()) {
+        std::string head = "  " + std::string(flag_prefix) + o.name + " " + o.value;
+        head.resize(std::max<std::size_t>(head.size() + 1, 21), ' ');
+        text += head + o.help + "\n";
+        std::string facts;
+        if (o.range) {
+            const std::string range = describe(*o.range);
+            facts = (range[0] == '[' || range[0] == '(' ? "in " : "") + range + "; ";
+        }
+        facts += "default " + std::string(o.fallback) + "; " + (o.shared ? "read by " : "for ") + readers(o.name);
+        text += std::string(21, ' ') + facts + "\n";
+    }
+    return text;
+}
+
+}  // namespace penumbra
