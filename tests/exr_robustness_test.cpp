@@ -261,6 +261,32 @@ TEST_F(ExrRobustness, DwaChunkThatDecompressesShortIsRefused)
     }
 }
 
+// Fuzzing (exr_reader_fuzz, 921,843 runs): a 525-byte DWAB file declaring a
+// window 655357 wide and 3 high made OpenEXR's scanline reader allocate 2 GB:
+// it sizes each line buffer for a whole chunk of lines (256 for DWAB), not for
+// the image's 3. The decoded-size bound now counts whole chunks of lines.
+TEST_F(ExrRobustness, FewLinesInALargeChunkAreCountedAsTheChunk)
+{
+    const std::string file = path("few-lines-dwab.exr");
+    Imf::Header header(16, 3);
+    header.compression() = Imf::DWAB_COMPRESSION;
+    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    std::vector<float> values(16 * 3, 0.5f);
+    Imf::FrameBuffer frame;
+    frame.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()), 4, 4 * 16));
+    {
+        Imf::OutputFile out(file.c_str(), header);
+        out.setFrameBuffer(frame);
+        out.writePixels(3);
+    }
+    ASSERT_NEAR(read_exr(file, {"Y"}).at(0, 15, 2), 0.5f, 1e-2f) << "the genuine file reads (DWA is lossy)";
+    // 655357 x 3 float pixels is 7.9 MB, within 65536 times the file's size;
+    // 256 lines of that width, the reader's line buffer, is 671 MB, beyond it.
+    set_data_window(file, 655356, 2);
+    expect_refused(file, "cannot hold in this compression");
+    EXPECT_THROW(exr_channel_names(file), Error);
+}
+
 // The checks refuse only what is wrong: a genuine file, all zeros (the most
 // compressible content) in every compression, is read back exactly.
 TEST_F(ExrRobustness, GenuineFilesInEveryCompressionAreRead)

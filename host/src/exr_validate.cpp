@@ -361,7 +361,15 @@ void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::strin
                         in_quotes(file.path()) + " declares " + std::to_string(tile_w) + "x" + std::to_string(tile_h) +
                             " tiles for a " + size_text + " image; the header is corrupt");
     }
-    const double decoded = double(pixels) * double(bytes_per_pixel(core));
+    // Its scanline reader sizes each line buffer for a whole chunk of lines
+    // (up to 256 for DWAB), however few lines the image has: count those rows.
+    std::int64_t rows = height;
+    if (l.storage == EXR_STORAGE_SCANLINE) {
+        int32_t lines = 1;
+        core.check(exr_get_scanlines_per_chunk(core.get(), 0, &lines), "its chunk layout cannot be read");
+        if (lines > 0) rows = (height + lines - 1) / lines * lines;
+    }
+    const double decoded = double(width) * double(rows) * double(bytes_per_pixel(core));
     const double bound = double(file.size()) * exr_max_expansion(l.compression);
     if (decoded > bound)
         throw Error(ErrorCategory::Io, operation,
