@@ -77,7 +77,7 @@ typedef struct {
 
 /* Sphere-traced SDF soft shadows (kernels/sdf.h). Analytic primitives are one
  * float buffer of records grouped by kind, in this order, each kind's count
- * below (world units; host: host/src/sdf_scene.cpp packs them):
+ * below (world units; host: host/src/sdf_analytic_scene.cpp packs them):
  *   plane   4 floats: unit normal n (3), offset: the solid dot(p, n) <= offset
  *   sphere  4 floats: centre (3), radius
  *   box    16 floats: centre (3), half size (3), the box's local x, y, z axes
