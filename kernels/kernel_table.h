@@ -1,0 +1,56 @@
+/* The kernel table: every entry point of the kernel descriptions, once.
+ *
+ * X(family, name, shape, Params, (buffers...)) per entry, where
+ *  - family: the OpenCL program the entry belongs to (one program per family,
+ *    built on first use) and the CPU backend's file for it;
+ *  - name:   the PN_KERNEL function of the descriptions that implements it;
+ *  - shape:  pixel (its last arguments are Params p, then the pixel x, y)
+ *            or task (Params p, then the task index);
+ *  - buffers, in argument order: PN_IN(T) (read), PN_OUT(T) (written),
+ *    PN_INOUT(T) (read and written), T one of float, uint, int; a consumer
+ *    defines PN_IN, PN_OUT and PN_INOUT before it expands the table.
+ *
+ * From this list and from nothing else come the CPU function tables of every
+ * ISA (simd/), the OpenCL kernel objects and their argument binding (cl/) and
+ * the typed identifier the host names a kernel by (host/backend/kernel_id.h).
+ * A table entry that a backend does not define fails that backend's build.
+ *
+ * This header holds macros only, so it may be included by C++ and by the
+ * build's embed step; it is not part of the OpenCL program.
+ */
+#ifndef PENUMBRA_KERNEL_TABLE_H
+#define PENUMBRA_KERNEL_TABLE_H
+
+/* The families, each an OpenCL program of its own. */
+#define PN_KERNEL_FAMILIES(F) F(moment_table) F(chebyshev) F(bilateral) F(sdf) F(moments)
+
+#define PN_KERNEL_TABLE(X)                                                                                  \
+    X(moment_table, sat_bands_float, task, SatParams,                                                    \
+      (PN_IN(float), PN_OUT(float), PN_OUT(float), PN_OUT(float), PN_OUT(int)))                             \
+    X(moment_table, sat_bands_exact, task, SatParams,                                                    \
+      (PN_IN(float), PN_OUT(uint), PN_OUT(uint), PN_OUT(uint), PN_OUT(int)))                                \
+    X(moment_table, sat_join_bands_float, pixel, SatParams, (PN_INOUT(float), PN_IN(float)))             \
+    X(moment_table, sat_join_bands_exact, pixel, SatParams, (PN_INOUT(uint), PN_IN(uint)))               \
+    X(chebyshev, vsm_float, pixel, ChebyshevParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
+    X(chebyshev, vsm_exact, pixel, ChebyshevParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))  \
+    X(chebyshev, vssm_float, pixel, ChebyshevParams,                                                     \
+      (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))                                             \
+    X(chebyshev, vssm_exact, pixel, ChebyshevParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
+    X(bilateral, bilateral_full, pixel, BilateralParams,                                                 \
+      (PN_IN(float), PN_IN(float), PN_IN(float), PN_IN(int), PN_IN(float), PN_OUT(float), PN_OUT(int)))     \
+    X(bilateral, bilateral_horizontal, pixel, BilateralParams,                                           \
+      (PN_IN(float), PN_IN(float), PN_IN(float), PN_IN(int), PN_IN(float), PN_OUT(float), PN_OUT(int)))     \
+    X(bilateral, bilateral_vertical, pixel, BilateralParams,                                             \
+      (PN_IN(float), PN_IN(float), PN_IN(float), PN_IN(int), PN_IN(float), PN_OUT(float)))                  \
+    X(sdf, sdf_grid, pixel, SdfParams, (PN_IN(float), PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))     \
+    X(sdf, sdf_analytic, pixel, SdfParams, (PN_IN(float), PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
+    X(moments, encoded_bands_float, task, EncodedSatParams, (PN_IN(float), PN_OUT(float), PN_OUT(float), PN_OUT(int))) \
+    X(moments, encoded_bands_exact, task, EncodedSatParams, (PN_IN(float), PN_OUT(uint), PN_OUT(uint), PN_OUT(int)))   \
+    X(moments, msm_float, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))       \
+    X(moments, msm_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))        \
+    X(moments, msm_soft_float, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))  \
+    X(moments, msm_soft_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))   \
+    X(moments, evsm_float, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
+    X(moments, evsm_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))
+
+#endif
