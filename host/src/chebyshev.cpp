@@ -63,14 +63,14 @@ void check_output(const std::string& op, const Image& receivers, const Image& ou
 
 Image vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options)
 {
-    Image out(receivers.width(), receivers.height(), 1);
+    Image out(receivers.width(), receivers.height(), 1, Image::Uninitialized{});  // the kernel writes every pixel or throws
     vsm(context, table, receivers, options, out);
     return out;
 }
 
 Image vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options)
 {
-    Image out(receivers.width(), receivers.height(), 1);
+    Image out(receivers.width(), receivers.height(), 1, Image::Uninitialized{});  // the kernel writes every pixel or throws
     vssm(context, table, receivers, options, out);
     return out;
 }

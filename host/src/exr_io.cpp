@@ -12,6 +12,8 @@
 
 #include <Imath/ImathBox.h>
 
+#include <tbb/info.h>
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -27,7 +29,6 @@
 #include <set>
 #include <sstream>
 #include <system_error>
-#include <thread>
 #include <utility>
 
 #include "exr_validate.h"
@@ -276,10 +277,12 @@ Imf::Header float_header(const Image& image, const std::vector<std::string>& cha
 
 // OpenEXR compresses (and Imf decodes) chunks on its own thread pool, which
 // is empty unless asked for (issue 10: a 2048^2 output written on one thread).
+// Sized as TBB sizes its own: the CPUs this process may run on (its affinity
+// mask, e.g. under taskset), not every CPU of the machine.
 void use_hardware_threads_for_exr()
 {
     static std::once_flag once;
-    std::call_once(once, [] { Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency()))); });
+    std::call_once(once, [] { Imf::setGlobalThreadCount(std::max(1, tbb::info::default_concurrency())); });
 }
 
 void write_exr_pixels(const std::string& temporary_path, const Image& image,
@@ -330,7 +333,9 @@ Image read_exr(const std::string& path, const std::vector<std::string>& channels
         throw_io(operation, quoted(path) + " is incomplete: its table of chunk offsets lacks some scanlines or tiles" +
                                 std::string(kReadAdvice));
 
-    Image image(extent.width, extent.height, int(channels.size()));
+    // Uninitialised: every pixel is decoded or the read throws (decode_exr
+    // finds every chunk, and Imf's readPixels every scanline or tile).
+    Image image(extent.width, extent.height, int(channels.size()), Image::Uninitialized{});
     // One pass decodes and checks every chunk; for DWA, which the core library
     // cannot decode, check the chunks' table entries, then read with Imf.
     if (detail::decode_exr(exr.file, channels, image, operation)) return image;

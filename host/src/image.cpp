@@ -1,6 +1,7 @@
 #include "penumbra/image.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -60,7 +61,13 @@ AlignedBuffer& AlignedBuffer::operator=(const AlignedBuffer& other)
     return *this;
 }
 
-Image::Image(int width, int height, int channels)
+Image::Image(int width, int height, int channels) : Image(width, height, channels, Uninitialized{})
+{
+    // zero_padding has faulted the pages in, on every thread; the pixels now.
+    if (storage_.size()) std::memset(storage_.data(), 0, storage_.size());
+}
+
+Image::Image(int width, int height, int channels, Uninitialized)
 {
     require(width >= 0 && height >= 0, "Image",
             "width and height must be non-negative (got " + std::to_string(width) + "x" +
@@ -72,7 +79,22 @@ Image::Image(int width, int height, int channels)
     channels_ = channels;
     pitch_ = padded_pitch(width);
     plane_pitch_ = std::size_t(pitch_) * std::size_t(height);
-    storage_ = AlignedBuffer(plane_pitch_ * std::size_t(channels) * sizeof(float));
+    storage_ = AlignedBuffer(plane_pitch_ * std::size_t(channels) * sizeof(float), Uninitialized{});
+    zero_padding();
+}
+
+// No byte of an image is left indeterminate: the writer fills the pixels, this
+// the columns past the width (copies and OpenCL's host buffers move them too).
+// In parallel, because touching a row's end faults its fresh pages in: on one
+// thread, that would serialise the cost the uninitialised storage saves.
+void Image::zero_padding()
+{
+    const int padding = pitch_ - width_;
+    const std::size_t rows = std::size_t(height_) * std::size_t(channels_);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t row = r.begin(); row < r.end(); ++row)
+            std::memset(plane(0) + row * std::size_t(pitch_) + std::size_t(width_), 0, std::size_t(padding) * sizeof(float));
+    });
 }
 
 float* Image::plane(int c) noexcept

@@ -239,14 +239,14 @@ EvsmTable build_evsm_table(Context& context, const Image& depth, const EvsmWarp&
 
 Image msm(Context& context, const MsmTable& table, const Image& receivers, const MsmOptions& options)
 {
-    Image out(receivers.width(), receivers.height(), 1);
+    Image out(receivers.width(), receivers.height(), 1, Image::Uninitialized{});  // the kernel writes every pixel or throws
     msm(context, table, receivers, options, out);
     return out;
 }
 
 Image msm_soft(Context& context, const MsmTable& table, const Image& receivers, const MsmSoftOptions& options)
 {
-    Image out(receivers.width(), receivers.height(), 1);
+    Image out(receivers.width(), receivers.height(), 1, Image::Uninitialized{});  // the kernel writes every pixel or throws
     msm_soft(context, table, receivers, options, out);
     return out;
 }
@@ -281,7 +281,7 @@ void msm_soft(Context& context, const MsmTable& table, const Image& receivers, c
 
 Image evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options)
 {
-    Image out(receivers.width(), receivers.height(), 1);
+    Image out(receivers.width(), receivers.height(), 1, Image::Uninitialized{});  // the kernel writes every pixel or throws
     evsm(context, table, receivers, options, out);
     return out;
 }
