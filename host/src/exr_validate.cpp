@@ -3,6 +3,7 @@
 // touching a frame buffer: the C++ InputFile of OpenEXR 3.1 zero-pads a chunk
 // that decompresses short and hands the caller whatever its buffer held.
 #include "exr_validate.h"
+#include "exr_zip_inflate.h"
 
 #include <OpenEXR/openexr.h>
 
@@ -166,6 +167,9 @@ exr_result_t decode_chunk(const CoreContext& core, const exr_chunk_info_t& chunk
         for (int c = 0; c < decode.channel_count; ++c) destination(decode.channels[c]);
         result = exr_decoding_choose_default_routines(core.get(), 0, &decode);
     }
+    exr_compression_t compression{};
+    if (result == EXR_ERR_SUCCESS) result = exr_get_compression(core.get(), 0, &compression);
+    if (result == EXR_ERR_SUCCESS) inflate_zip_with_libdeflate(decode, compression);
     if (result == EXR_ERR_SUCCESS) result = exr_decoding_run(core.get(), 0, &decode);
     exr_decoding_destroy(core.get(), &decode);
     return result;
