@@ -56,7 +56,7 @@ void shade(Context& ctx, const std::string& source, const SdfOptions& o, Image& 
 }
 
 // Steps per frame and the step counts themselves, once per source and
-// estimate (every backend takes the same steps; tests/sdf_test.cpp checks it).
+// estimate (every backend takes the same steps; tests/kernels/sdf_test.cpp checks it).
 const Image& steps(const std::string& source, const std::string& estimate)
 {
     static std::map<std::string, Image> cache;

@@ -6,7 +6,7 @@
 //  - msm, msm-soft: the lookups run the same operations in the same order
 //    everywhere with contraction off and correctly rounded division and
 //    square root, so SIMD must match scalar to the bit and OpenCL (PoCL) to
-//    1e-5, as VSM's (tests/chebyshev_test.cpp);
+//    1e-5, as VSM's (tests/kernels/chebyshev_test.cpp);
 //  - evsm: the warp's exp() differs by an ulp or two between xsimd, libm and
 //    OpenCL, which the bound can amplify where the receiver's warped depth
 //    nears the window mean: 2e-5 (measured: 6.7e-6).

@@ -2,8 +2,8 @@
 // a brute-force reference in double, a closed-form Gaussian blur on a flat
 // guide, a constant mask, the halo test across a depth step, fully rejected
 // neighbourhoods, odd sizes, and every backend against the scalar one.
-// tests/bilateral_opencv_test.cpp compares with OpenCV; bad input and the
-// `penumbra blur` command are in tests/bilateral_errors_test.cpp.
+// tests/kernels/bilateral_opencv_test.cpp compares with OpenCV; bad input and the
+// `penumbra blur` command are in tests/host/bilateral_errors_test.cpp.
 //
 // Tolerances (masks in [0, 1]). The kernel differs from the reference in
 // double by: its exponential, 2.9e-6 relative (bilateral_exp2_neg); the
@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "bilateral_reference.h"
+#include "support/bilateral_reference.h"
 #include "support/backends.h"
 
 namespace penumbra {

@@ -15,7 +15,7 @@
 #include "penumbra/reference.h"
 #include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
-#include "sdf_test_scenes.h"
+#include "support/sdf_test_scenes.h"
 
 namespace penumbra {
 namespace {

@@ -14,7 +14,7 @@
 #include <sstream>
 #include <string>
 
-#include "bilateral_reference.h"
+#include "support/bilateral_reference.h"
 #include "penumbra/bilateral.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
