@@ -15,11 +15,14 @@
 
 #include "penumbra/error.h"
 #include "support/backends.h"
+#include "support/errors.h"
 #include "support/maps.h"
+#include "support/visibility.h"
 
 namespace penumbra {
 namespace {
 
+using testing::expect_visibility;
 using testing::backend_names;
 using testing::backend_test_name;
 
@@ -121,15 +124,6 @@ Image vsm_receivers(const Image& depth, std::uint32_t seed)
             rx.at(2, x, y) = rng() % 3 == 0 ? depth.at(0, x, ty) + near(rng) : anywhere(rng);
         }
     return rx;
-}
-
-void expect_visibility(const Image& out)
-{
-    for (int y = 0; y < out.height(); ++y)
-        for (int x = 0; x < out.width(); ++x) {
-            const float v = out.at(0, x, y);
-            ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f) << "visibility " << v << " at " << x << "," << y;
-        }
 }
 
 // ---- VSM against the closed form, every backend --------------------------------
@@ -307,22 +301,8 @@ Image cross_receivers(std::uint32_t seed)
     return rx;
 }
 
-struct Difference {
-    double max = 0.0;
-    int differing = 0;
-};
-
-Difference difference(const Image& a, const Image& b)
-{
-    Difference d;
-    for (int y = 0; y < a.height(); ++y)
-        for (int x = 0; x < a.width(); ++x) {
-            const double diff = std::abs(double(a.at(0, x, y)) - b.at(0, x, y));
-            d.max = std::max(d.max, diff);
-            d.differing += diff != 0.0;
-        }
-    return d;
-}
+using testing::Difference;
+using testing::difference;
 
 PN_BACKEND_TEST(ChebyshevCrossBackendTest, AgreesWithScalar)
 {
@@ -367,18 +347,7 @@ INSTANTIATE_TEST_SUITE_P(Backends, ChebyshevCrossBackendTest, ::testing::ValuesI
 
 // ---- bad input: penumbra::Error naming the operation and the parameter ------------
 
-template <class Call>
-void expect_error(Call&& call, ErrorCategory category, const std::string& operation, const std::string& needle)
-{
-    try {
-        call();
-        ADD_FAILURE() << "no error; expected one mentioning \"" << needle << "\"";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.category(), category) << e.what();
-        EXPECT_EQ(e.operation(), operation) << e.what();
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << "\"" << e.what() << "\" lacks " << needle;
-    }
-}
+using testing::expect_error;
 
 TEST(ChebyshevErrors, RejectsBadReceiversAndFilterSettings)
 {

@@ -33,22 +33,8 @@ namespace {
 
 using testing::backend_test_name;
 
-struct Difference {
-    double max = 0.0;
-    int differing = 0;
-};
-
-Difference difference(const Image& a, const Image& b)
-{
-    Difference d;
-    for (int y = 0; y < a.height(); ++y)
-        for (int x = 0; x < a.width(); ++x) {
-            const double diff = std::abs(double(a.at(0, x, y)) - b.at(0, x, y));
-            d.max = std::max(d.max, diff);
-            d.differing += diff != 0.0;
-        }
-    return d;
-}
+using testing::Difference;
+using testing::difference;
 
 Image cross_receivers(const Image& depth, std::uint32_t seed)
 {

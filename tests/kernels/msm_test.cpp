@@ -2,7 +2,8 @@
 // (tests/support/moment_reference.h, itself checked against a linear program),
 // on the windows where it is known to fail (one depth, two depths, depths 0
 // and 1, receivers at a blocker's depth, the 16-bit limits, windows up to the
-// whole map), the overlap case against VSM, and against the scalar backend.
+// whole map) and the overlap case against VSM (every backend against the
+// scalar one: kernels/moments_cross_backend_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,10 +19,12 @@
 #include "support/maps.h"
 #include "support/moment_reference.h"
 #include "support/msm_windows.h"
+#include "support/visibility.h"
 
 namespace penumbra {
 namespace {
 
+using testing::expect_visibility;
 using testing::Atom;
 using testing::backend_names;
 using testing::backend_test_name;
@@ -29,15 +32,6 @@ using testing::Moments4;
 using testing::msm_excess;
 using testing::msm_table_for;
 using testing::window_atoms;
-
-void expect_visibility(const Image& out, const std::string& where)
-{
-    for (int y = 0; y < out.height(); ++y)
-        for (int x = 0; x < out.width(); ++x) {
-            const float v = out.at(0, x, y);
-            ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f) << where << ": " << v << " at " << x << "," << y;
-        }
-}
 
 // ---- the reference itself -----------------------------------------------------
 

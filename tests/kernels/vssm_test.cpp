@@ -13,10 +13,12 @@
 #include "penumbra/error.h"
 #include "support/backends.h"
 #include "support/maps.h"
+#include "support/visibility.h"
 
 namespace penumbra {
 namespace {
 
+using testing::expect_visibility;
 using testing::backend_names;
 using testing::backend_test_name;
 
@@ -129,15 +131,6 @@ Expected vssm_expected(const Image& depth, Precision precision, const VssmOption
         tolerance += worst;
     }
     return {ref, tolerance};
-}
-
-void expect_visibility(const Image& out)
-{
-    for (int y = 0; y < out.height(); ++y)
-        for (int x = 0; x < out.width(); ++x) {
-            const float v = out.at(0, x, y);
-            ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f) << "visibility " << v << " at " << x << "," << y;
-        }
 }
 
 // One receiver (u, v, z) repeated over a strip-shaped image (every lane of every
