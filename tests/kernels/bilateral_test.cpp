@@ -312,7 +312,7 @@ class BilateralAgreement : public ::testing::TestWithParam<std::string> {};
 PN_BACKEND_TEST(BilateralAgreement, AgreesWithScalarBackend)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Context& oracle = PN_CONTEXT_OR_SKIP(std::string("scalar"));
+    Context& oracle = testing::scalar_oracle(backend);
     const double tolerance = backend == "sse4.2" ? 2e-6 : 2e-7;
     const int w = 67, h = 45;
     const Image guide = testing::structured_guide(w, h, 4);

@@ -307,7 +307,7 @@ using testing::difference;
 PN_BACKEND_TEST(ChebyshevCrossBackendTest, AgreesWithScalar)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Context& scalar = PN_CONTEXT_OR_SKIP("scalar");
+    Context& scalar = testing::scalar_oracle(backend);
     const Image depth = testing::random_depth(131, 29, 41);
     const Image rx = cross_receivers(43);
     const bool simd = backend != "opencl";

@@ -72,7 +72,7 @@ class MomentsCrossBackendTest : public ::testing::TestWithParam<std::string> {};
 PN_BACKEND_TEST(MomentsCrossBackendTest, AgreesWithScalar)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Context& scalar = PN_CONTEXT_OR_SKIP("scalar");
+    Context& scalar = testing::scalar_oracle(backend);
     const Image depth = cross_depth();
     const Image rx = cross_receivers(depth, 43);
     const bool simd = backend != "opencl";

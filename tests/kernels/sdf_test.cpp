@@ -383,7 +383,7 @@ class SdfAgreement : public ::testing::TestWithParam<std::string> {};
 PN_BACKEND_TEST(SdfAgreement, AgreesWithTheScalarOracle)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Context& oracle = PN_CONTEXT_OR_SKIP("scalar");
+    Context& oracle = testing::scalar_oracle(backend);
     const ContactReceivers& c = contact();
     for (bool use_grid : {false, true})
         for (SdfEstimate estimate : kEstimates) {

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,18 @@ namespace penumbra::testing {
 struct SkipBackend {
     std::string why;
 };
+
+// The scalar oracle's context, for a test that compares `backend` with it.
+// Throws, failing the test, when `backend` is "scalar" itself: the test would
+// compare the oracle with itself and pass whatever the kernels do. Such
+// suites are instantiated over non_scalar_backends().
+inline Context& scalar_oracle(const std::string& backend)
+{
+    if (backend == "scalar")
+        throw std::logic_error("an agreement test run for \"scalar\" compares the oracle with itself: "
+                               "instantiate its suite over non_scalar_backends()");
+    return PN_CONTEXT_OR_SKIP("scalar");
+}
 }  // namespace penumbra::testing
 
 // Wraps a test body so that an unavailable backend skips the test with its reason.
