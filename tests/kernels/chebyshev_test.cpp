@@ -18,6 +18,7 @@
 #include "support/errors.h"
 #include "support/maps.h"
 #include "support/visibility.h"
+#include "support/vsm_reference.h"
 
 namespace penumbra {
 namespace {
@@ -28,34 +29,13 @@ using testing::backend_test_name;
 
 // ---- the independent reference ------------------------------------------------
 
-// A window's E[z] and E[z^2] in double, of the float32 depths themselves: an
-// exact (limb) table rounds z and z^2 to 2^-33 (kernels/moment_table.h),
-// far inside the slack below; a float table of dyadic depths is exact.
-struct Moments {
-    double mean, mean_sq;
-};
-
-Moments window_moments(const Image& depth, Precision precision, int x0, int x1, int y0, int y1)
-{
-    double s1 = 0.0, s2 = 0.0;
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) {
-            const float z = depth.at(0, x, y);
-            s1 += z;
-            s2 += double(z) * z;
-        }
-    (void)precision;
-    const double area = double(x1 - x0) * (y1 - y0);
-    return {s1 / area, s2 / area};
-}
-
-// p_max = var / (var + d^2) for d = z - mean > 0, else 1; var floored.
-double upper_bound(double raw_variance, double d, double min_variance)
-{
-    if (d <= 0.0) return 1.0;
-    const double var = std::max(raw_variance, min_variance);
-    return var / (var + d * d);
-}
+// A window's E[z] and E[z^2] in double, of the float32 depths themselves
+// (support/vsm_reference.h): an exact (limb) table rounds z and z^2 to 2^-33
+// (kernels/moment_table.h), far inside the slack below; a float table of
+// dyadic depths is exact.
+using testing::chebyshev_upper_bound;
+using testing::covered_moments;
+using testing::Moments;
 
 double linstep(double lo, double hi, double v) { return std::clamp((v - lo) / (hi - lo), 0.0, 1.0); }
 
@@ -84,9 +64,9 @@ Expected chebyshev_expected(Moments m, double z, double min_variance, double ble
 {
     const double raw = m.mean_sq - m.mean * m.mean;
     const double d = z - m.mean;
-    const double p = upper_bound(raw, d, min_variance);
-    const double p_lo = upper_bound(raw - kVarianceSlack, d + kDistanceSlack, min_variance);
-    const double p_hi = upper_bound(raw + kVarianceSlack, d - kDistanceSlack, min_variance);
+    const double p = chebyshev_upper_bound(raw, d, min_variance);
+    const double p_lo = chebyshev_upper_bound(raw - kVarianceSlack, d + kDistanceSlack, min_variance);
+    const double p_hi = chebyshev_upper_bound(raw + kVarianceSlack, d - kDistanceSlack, min_variance);
     const double slack = kRoundingSlack / (1.0 - bleed);
     return {linstep(bleed, 1.0, p), linstep(bleed, 1.0, p_lo) - slack, linstep(bleed, 1.0, p_hi) + slack};
 }
@@ -97,8 +77,8 @@ Expected vsm_expected(const Image& depth, Precision precision, float u, float v,
     const int w = depth.width(), h = depth.height();
     const int tx = std::clamp(int(std::floor(std::clamp(double(u), 0.0, 1.0) * w)), 0, w - 1);
     const int ty = std::clamp(int(std::floor(std::clamp(double(v), 0.0, 1.0) * h)), 0, h - 1);
-    const Moments m = window_moments(depth, precision, std::max(tx - o.radius, 0), std::min(tx + o.radius + 1, w),
-                                     std::max(ty - o.radius, 0), std::min(ty + o.radius + 1, h));
+    const Moments m = covered_moments(depth, std::max(tx - o.radius, 0), std::min(tx + o.radius + 1, w),
+                                      std::max(ty - o.radius, 0), std::min(ty + o.radius + 1, h));
     return chebyshev_expected(m, z, o.min_variance, o.bleed);
 }
 
