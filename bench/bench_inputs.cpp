@@ -100,14 +100,7 @@ Context& context(const std::string& backend)
     static std::map<std::string, Context> cache;
     auto it = cache.find(backend);
     if (it != cache.end()) return it->second;
-    ContextOptions options;
-    if (backend == "scalar")
-        options.backend = Backend::Scalar;
-    else if (backend == "opencl")
-        options.backend = Backend::OpenCL;
-    else
-        options = ContextOptions{Backend::Simd, backend};
-    return cache.emplace(backend, Context(options)).first->second;
+    return cache.emplace(backend, Context(testing::backend_options(backend))).first->second;
 }
 
 }  // namespace penumbra::bench

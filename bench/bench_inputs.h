@@ -15,6 +15,7 @@
 #include "penumbra/context.h"
 #include "penumbra/image.h"
 #include "penumbra/moment_table.h"
+#include "support/backend_list.h"  // backend_names(): the tests' list
 
 namespace penumbra::bench {
 
@@ -37,8 +38,8 @@ struct CopyBuffers {
 };
 const CopyBuffers& copy_buffers(std::size_t bytes);
 
-// One context per backend name ("scalar", "sse4.2", "avx2", "avx512",
-// "opencl"), made on first use and kept: the OpenCL program build (seconds
+// One context per backend name (testing::backend_names(): "scalar",
+// "sse4.2", "avx2", "avx512", "opencl"), made on first use and kept: the OpenCL program build (seconds
 // under PoCL) stays outside every timing. Throws penumbra::Error when the
 // backend cannot start.
 Context& context(const std::string& backend);

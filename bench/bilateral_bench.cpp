@@ -23,7 +23,6 @@
 
 #include "bench_inputs.h"
 #include "penumbra/bilateral.h"
-#include "simd/cpu_kernels.h"
 
 #ifdef PENUMBRA_HAVE_OPENCV_XIMGPROC
 #include <opencv2/core.hpp>
@@ -132,14 +131,6 @@ void run_penumbra(benchmark::State& state, const std::string& backend, const std
     }
 }
 
-std::vector<std::string> backends()
-{
-    std::vector<std::string> names{"scalar"};
-    for (std::string_view isa : cpu::supported_isas()) names.emplace_back(isa);
-    names.emplace_back("opencl");
-    return names;
-}
-
 #ifdef PENUMBRA_HAVE_OPENCV_XIMGPROC
 // cv::ximgproc::jointBilateralFilter(joint, src, dst, d = 2r + 1, sigmaColor,
 // sigmaSpace, BORDER_REPLICATE) on the same float images (wrapped, not copied).
@@ -189,7 +180,7 @@ double fastest(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::mi
 [[maybe_unused]] const bool registered = [] {
     // No "size:" key: bench/ratios.py reads that one as a square map's side.
     const std::string size = "/width:1920/height:1080/radius:2";
-    for (const std::string& backend : backends())
+    for (const std::string& backend : testing::backend_names())
         for (const char* schedule : {"full", "disk", "separable"})
             for (int channels : {1, 4})
                 for (int threads : {1, 2}) {

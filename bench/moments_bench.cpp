@@ -19,21 +19,12 @@
 
 #include "bench_inputs.h"
 #include "penumbra/moments.h"
-#include "simd/cpu_kernels.h"
 
 namespace penumbra::bench {
 namespace {
 
 constexpr int kSize = 4096;
 constexpr int kRadius = 8;
-
-std::vector<std::string> backends()
-{
-    std::vector<std::string> names{"scalar"};
-    for (std::string_view isa : cpu::supported_isas()) names.emplace_back(isa);
-    names.emplace_back("opencl");
-    return names;
-}
 
 // The storages: exact limb tables (the default), MSM's opt-in 16-bit
 // optimized quantization (EVSM has none: its 16-bit tables cannot keep the
@@ -129,7 +120,7 @@ void table(benchmark::State& state, const std::string& op, const std::string& ba
     for (const char* op : {"msm_r0", "msm_r1", "msm_r2", "msm_r8", "msm_soft", "evsm2_r8", "evsm4_r8", "msm_table",
                            "evsm4_table"})
         for (const Storage& s : kStorages)
-            for (const std::string& backend : backends())
+            for (const std::string& backend : testing::backend_names())
                 for (int threads : {1, 2}) {
                     // EVSM has no 16-bit storage any more (see kStorages).
                     if (s.quantization == Quantization::Bits16 && std::string(op).find("evsm") == 0) continue;

@@ -13,49 +13,12 @@ on every core) and SIMD 2 threads / 1 thread. "SIMD" is the ISA the library
 picks by default (the run's penumbra_default_isa context). Standard library
 only.
 """
-import json
-import statistics
+import os
 import sys
 
-ORDER = ["scalar", "sse4.2", "avx2", "avx512", "opencl"]
-
-
-def parse(name):
-    parts = name.split("/")
-    case = {"op": parts[0], "threads": 0}
-    for part in parts[1:]:
-        if ":" in part:
-            key, value = part.split(":", 1)
-            case[key] = int(value) if key in ("size", "threads") else value
-    return case
-
-
-def load(path):
-    with open(path) as f:
-        doc = json.load(f)
-    runs = {}
-    for b in doc["benchmarks"]:
-        if b.get("error_occurred"):
-            continue
-        name = b.get("run_name", b["name"])
-        if b.get("run_type") == "aggregate":
-            if b.get("aggregate_name") == "median":
-                runs[name] = [b["pixels/s"]]
-        else:
-            runs.setdefault(name, []).append(b["pixels/s"])
-    cases = []
-    for name, rates in runs.items():
-        case = parse(name)
-        case["pixels"] = statistics.median(rates)
-        cases.append(case)
-    return doc.get("context", {}), cases
-
-
-def find(cases, **want):
-    for c in cases:
-        if all(c.get(k) == v for k, v in want.items()):
-            return c
-    return None
+# One reader of penumbra_bench's JSON and case names: bench/ratios.py's.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ratios import ISA_ORDER, find, load  # noqa: E402
 
 
 def ratio(a, b):
@@ -80,7 +43,7 @@ def main(argv):
     if len(args) != 1:
         print(__doc__, file=sys.stderr)
         return 2
-    context, cases = load(args[0])
+    context, cases = load(args[0], "median", ops=None)
     simd = context.get("penumbra_default_isa", "avx512")
     print(f"host {context.get('host_name', '?')}, {context.get('num_cpus', '?')} CPUs, "
           f"load average at start {context.get('load_avg', '?')}; SIMD = {simd}\n")
@@ -88,7 +51,7 @@ def main(argv):
     rows = []
     for op in ops:
         for precision in ("exact", "float"):
-            for backend in ORDER:
+            for backend in ISA_ORDER:
                 for threads in (1, 2, 0):
                     c = find(cases, op=op, precision=precision, backend=backend, threads=threads)
                     if c:

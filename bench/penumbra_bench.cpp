@@ -289,6 +289,19 @@ void register_opencv()
 }
 #endif
 
+// Sizes and thread counts per backend (testing::backend_names()): scalar is
+// slow, so its run is short and on one thread; OpenCL runs PoCL's own
+// threads (0: no arena).
+struct BackendPlan {
+    std::vector<int> sizes, threads;
+};
+BackendPlan plan_for(const std::string& backend)
+{
+    if (backend == "scalar") return {kScalarSizes, {1}};
+    if (backend == "opencl") return {kSizes, {0}};
+    return {kSizes, kThreads};
+}
+
 void register_all()
 {
     std::vector<std::string> isas;
@@ -299,15 +312,14 @@ void register_all()
     benchmark::AddCustomContext("penumbra_default_isa", std::string(cpu::chosen_isa()));
 
     register_memcpy();
-    register_table("scalar", kScalarSizes, {1});
-    for (const auto& isa : isas) register_table(isa, kSizes, kThreads);
-    register_table("opencl", kSizes, {0});
+    const std::vector<std::string> backends = testing::backend_names();
+    for (const std::string& backend : backends)
+        register_table(backend, plan_for(backend).sizes, plan_for(backend).threads);
 #ifdef PENUMBRA_HAVE_OPENCV
     register_opencv();
 #endif
-    register_lookups("scalar", kScalarSizes, {1});
-    for (const auto& isa : isas) register_lookups(isa, kSizes, kThreads);
-    register_lookups("opencl", kSizes, {0});
+    for (const std::string& backend : backends)
+        register_lookups(backend, plan_for(backend).sizes, plan_for(backend).threads);
     register_diagnostics();
 }
 

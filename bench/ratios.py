@@ -52,7 +52,9 @@ def parse_name(run_name):
     return case
 
 
-def load(path, stat):
+def load(path, stat, ops=OPS):
+    """(context, cases) of one run: `ops` names the cases kept (None: every case;
+    bench/moments_ratios.py reads the moment family's with it)."""
     with open(path) as f:
         doc = json.load(f)
     groups = {}
@@ -69,7 +71,7 @@ def load(path, stat):
     cases = []
     for name, g in groups.items():
         case = parse_name(name)
-        if case["op"] not in OPS:
+        if ops is not None and case["op"] not in ops:
             continue
         if g["median"] is not None:
             m = g["median"]

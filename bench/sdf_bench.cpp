@@ -56,7 +56,7 @@ void shade(Context& ctx, const std::string& source, const SdfOptions& o, Image& 
 }
 
 // Steps per frame and the step counts themselves, once per source and
-// estimate (every backend takes the same steps; tests/sdf_test.cpp checks it).
+// estimate (every backend takes the same steps; tests/kernels/sdf_test.cpp checks it).
 const Image& steps(const std::string& source, const std::string& estimate)
 {
     static std::map<std::string, Image> cache;
@@ -76,11 +76,6 @@ void in_arena(int threads, Fn&& fn)
     arena.execute(fn);
 }
 
-int lanes_of(const std::string& backend)
-{
-    return backend == "scalar" || backend == "opencl" ? 1 : cpu::kernels_for(backend).lanes;
-}
-
 void run(benchmark::State& state, const std::string& backend, const std::string& source,
          const std::string& estimate, int threads)
 {
@@ -98,7 +93,7 @@ void run(benchmark::State& state, const std::string& backend, const std::string&
                 benchmark::ClobberMemory();
             }
         });
-        const LaneUtilisation u = lane_utilisation(counted, 1, lanes_of(backend));
+        const LaneUtilisation u = lane_utilisation(counted, 1, testing::backend_lanes(backend));
         const double n = double(state.iterations());
         state.counters["pixels/s"] = benchmark::Counter(double(kWidth) * kHeight * n, benchmark::Counter::kIsRate);
         state.counters["rays/s"] = benchmark::Counter(double(kWidth) * kHeight * n, benchmark::Counter::kIsRate);
@@ -109,20 +104,12 @@ void run(benchmark::State& state, const std::string& backend, const std::string&
     }
 }
 
-std::vector<std::string> backends()
-{
-    std::vector<std::string> names{"scalar"};
-    for (std::string_view isa : cpu::supported_isas()) names.emplace_back(isa);
-    names.emplace_back("opencl");
-    return names;
-}
-
 // Registered at static initialisation, as BENCHMARK() does, with names built
 // from the ISAs this CPU has. The classic estimate on every backend; the
 // improved one on the ISA the library picks, for the cost of its extra sqrt.
 [[maybe_unused]] const bool registered = [] {
     const std::string best = cpu::supported_isas().empty() ? "scalar" : std::string(cpu::supported_isas().back());
-    for (const std::string& backend : backends())
+    for (const std::string& backend : testing::backend_names())
         for (const char* source : {"analytic", "grid"})
             for (const char* estimate : {"classic", "improved"})
                 for (int threads : {1, 2}) {

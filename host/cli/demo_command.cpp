@@ -349,7 +349,7 @@ int demo_command(const std::vector<std::string>& argv)
                 Row row = measure(ctx, m.settings[s], frames, o.repeats, estimate);
                 row.method = m.name;
                 rows.push_back(row);
-                if (int(s) == m.preview) write_previews(dir, m.name, estimate, frames[0]);
+                if (int(s) == m.preview_setting) write_previews(dir, m.name, estimate, frames[0]);
                 progress.step(name + ": " + m.name + " " + m.settings[s].label);
             }
         }

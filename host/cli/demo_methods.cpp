@@ -41,9 +41,10 @@ struct SweepPoint {
 DemoMethod table_method(const char* name, const std::vector<SweepPoint>& sweep)
 {
     const Method& method = find_method(name);
-    DemoMethod m{method.name, {}, kMiddleSetting};
+    DemoMethod m{.name = method.name, .preview_setting = kMiddleSetting};
     for (const SweepPoint& point : sweep)
-        m.settings.push_back({point.label, [&method, s = point.settings](Context& ctx, const DemoFrame& f) {
+        m.settings.push_back({.label = point.label,
+                              .run = [&method, s = point.settings](Context& ctx, const DemoFrame& f) {
                                   return method.run(ctx, f.shadow_map, f.receivers.light_uvz, s);
                               }});
     return m;
@@ -107,9 +108,13 @@ private:
     DistanceGrid grid_;
 };
 
-DemoMethod sdf_method(const reference::Scene& scene, int map_size, bool analytic)
+// What the distance-field rows trace: the baked grid or the primitives.
+enum class SdfSource { Grid, Analytic };
+
+DemoMethod sdf_method(const reference::Scene& scene, int map_size, SdfSource source)
 {
-    DemoMethod m{analytic ? "sdf-analytic" : "sdf", {}, kFirstSetting};
+    const bool analytic = source == SdfSource::Analytic;
+    DemoMethod m{.name = analytic ? "sdf-analytic" : "sdf", .preview_setting = kFirstSetting};
     const std::size_t nodes = map_size >= 1024 ? reference::kSdfGridNodes : reference::kSdfGridNodes / 8;
     // Baked on first use: listing the methods (to check --method, to count the
     // work) must not cost a bake per scene, seconds each.
@@ -123,7 +128,7 @@ DemoMethod sdf_method(const reference::Scene& scene, int map_size, bool analytic
     for (Variant v : {Variant{"classic", SdfEstimate::Classic, 1.0f}, Variant{"improved", SdfEstimate::Improved, 1.0f},
                       Variant{"classic k/2", SdfEstimate::Classic, 0.5f},
                       Variant{"classic 2k", SdfEstimate::Classic, 2.0f}}) {
-        m.settings.push_back({v.label, [grid, primitives, v](Context& ctx, const DemoFrame& f) {
+        m.settings.push_back({.label = v.label, .run = [grid, primitives, v](Context& ctx, const DemoFrame& f) {
                                   SdfOptions o = sdf_options_for(f.scene, v.estimate);
                                   o.k *= v.k_scale;
                                   const reference::Receivers& r = f.receivers;
@@ -147,12 +152,13 @@ Image blurred(Context& ctx, const DemoFrame& f, const Image& visibility)
     return cross_bilateral(ctx, visibility, f.receivers.view_depth, o);
 }
 
-DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vector<int> keep)
+// `source` at the settings numbered `blurred_settings`, each followed by the blur.
+DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vector<int> blurred_settings)
 {
-    DemoMethod m{name, {}, kFirstSetting};
-    for (int index : keep) {
+    DemoMethod m{.name = name, .preview_setting = kFirstSetting};
+    for (int index : blurred_settings) {
         DemoSetting inner = source.settings[std::size_t(index)];
-        m.settings.push_back({inner.label + " +blur", [inner](Context& ctx, const DemoFrame& f) {
+        m.settings.push_back({.label = inner.label + " +blur", .run = [inner](Context& ctx, const DemoFrame& f) {
                                   return blurred(ctx, f, inner.run(ctx, f));
                               }});
     }
@@ -163,18 +169,19 @@ DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vecto
 
 std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size)
 {
-    DemoMethod sdf_grid = sdf_method(scene, map_size, false);
+    DemoMethod sdf_grid = sdf_method(scene, map_size, SdfSource::Grid);
     const DemoMethod vsm = table_method("vsm", radius_sweep());
+    const std::vector<int> vsm_small_radii = {0, 1}, sdf_classic = {0};  // blurred: the noisiest settings
     return {vsm,
-            blurred_method(vsm, "vsm+blur", {0, 1}),
+            blurred_method(vsm, "vsm+blur", vsm_small_radii),
             table_method("vssm", light_sweep(scene, map_size)),
             table_method("msm", radius_sweep(kDemoMsmDepthBias)),
             table_method("msm-soft", light_sweep(scene, map_size, kDemoMsmDepthBias)),
             table_method("evsm2", radius_sweep()),
             table_method("evsm4", radius_sweep()),
             sdf_grid,
-            blurred_method(sdf_grid, "sdf+blur", {0}),
-            sdf_method(scene, map_size, true)};
+            blurred_method(sdf_grid, "sdf+blur", sdf_classic),
+            sdf_method(scene, map_size, SdfSource::Analytic)};
 }
 
 }  // namespace penumbra::cli

@@ -29,7 +29,7 @@ struct DemoSetting {
 struct DemoMethod {
     std::string name;                  // e.g. "vsm"
     std::vector<DemoSetting> settings;
-    int preview = 0;                   // the setting whose images the demo writes
+    int preview_setting = 0;           // index into settings: the one whose images the demo writes
 };
 
 // Every method of the library, its settings chosen for `scene` (light size

@@ -1,7 +1,7 @@
 // The built-in reference scenes, each named for the failure it provokes.
 // docs/reference.md describes them; the numbers below are their parameters.
 // Every scene keeps what its view camera sees inside the light's frustum
-// (tests/reference_scene_test.cpp checks the valid fraction).
+// (tests/reference/reference_scene_test.cpp checks the valid fraction).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -1,24 +1,19 @@
-// Every backend this machine has, for parameterised tests: scalar, each SIMD
-// ISA the CPU runs, and OpenCL. A backend that cannot start here (OpenCL with
-// no device) makes its tests GTEST_SKIP with the reason: never a silent pass.
+// Every backend this machine has (support/backend_list.h), for parameterised
+// tests: scalar, each SIMD ISA the CPU runs, and OpenCL. A backend that cannot
+// start here (OpenCL with no device) makes its tests GTEST_SKIP with the
+// reason: never a silent pass.
 #pragma once
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "penumbra/context.h"
+#include "support/backend_list.h"
 
 namespace penumbra::testing {
-
-// "scalar", "sse4.2", "avx2", "avx512" (those this CPU runs), "opencl".
-std::vector<std::string> backend_names();
-// backend_names() without "scalar": for tests that compare a backend with the
-// scalar oracle, which must not be instantiated (and pass) for scalar itself.
-std::vector<std::string> non_scalar_backends();
-// Lanes of a backend's strips (1 for scalar and OpenCL).
-int backend_lanes(const std::string& name);
 
 // One context per backend per test process (the OpenCL program is built once).
 // Returns nullptr and sets `why` when the backend cannot start here.
@@ -26,10 +21,6 @@ Context* shared_context(const std::string& name, std::string* why);
 
 // For gtest's name generator: "avx512", "sse4_2", ...
 std::string backend_test_name(const ::testing::TestParamInfo<std::string>& info);
-
-// Widths that exercise every strip/tail shape of every lane count here:
-// 1, N-1, N, N+1, 3N+1 for each ISA's N.
-std::vector<int> lane_edge_widths();
 
 }  // namespace penumbra::testing
 
@@ -46,6 +37,18 @@ namespace penumbra::testing {
 struct SkipBackend {
     std::string why;
 };
+
+// The scalar oracle's context, for a test that compares `backend` with it.
+// Throws, failing the test, when `backend` is "scalar" itself: the test would
+// compare the oracle with itself and pass whatever the kernels do. Such
+// suites are instantiated over non_scalar_backends().
+inline Context& scalar_oracle(const std::string& backend)
+{
+    if (backend == "scalar")
+        throw std::logic_error("an agreement test run for \"scalar\" compares the oracle with itself: "
+                               "instantiate its suite over non_scalar_backends()");
+    return PN_CONTEXT_OR_SKIP("scalar");
+}
 }  // namespace penumbra::testing
 
 // Wraps a test body so that an unavailable backend skips the test with its reason.

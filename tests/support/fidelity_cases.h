@@ -1,6 +1,6 @@
 // The cases of the fidelity measurements (issue 9): the maps, the receivers
 // on, in front of and behind them, and the library calls of every method in
-// each mode, shared by tests/moment_fidelity_test.cpp and
+// each mode, shared by tests/kernels/moment_fidelity_test.cpp and
 // bench/moment_fidelity.cpp so that the test asserts on the cases the
 // deviation table measures.
 #pragma once

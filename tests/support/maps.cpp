@@ -1,5 +1,6 @@
 #include "support/maps.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra::testing {
@@ -68,6 +69,18 @@ std::uint32_t brute_exact_sum(const Image& depth, int plane, int limbs, int x0, 
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) sum += exact_limb(depth.at(0, x, y), k, limbs, l);
     return std::uint32_t(sum);
+}
+
+Difference difference(const Image& a, const Image& b)
+{
+    Difference d;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            const double diff = std::abs(double(a.at(0, x, y)) - b.at(0, x, y));
+            d.max = std::max(d.max, diff);
+            d.differing += diff != 0.0;
+        }
+    return d;
 }
 
 }  // namespace penumbra::testing

@@ -29,4 +29,12 @@ double brute_sum(const Image& depth, int k, int x0, int x1, int y0, int y1);
 // The wrapped sum of plane `plane` (1-based, as MomentTable::exact_box_sum).
 std::uint32_t brute_exact_sum(const Image& depth, int plane, int limbs, int x0, int x1, int y0, int y1);
 
+// Channel 0 of two images of one size: the largest |a - b| and how many
+// pixels differ at all (cross-backend agreement: bit-exact or within a bound).
+struct Difference {
+    double max = 0.0;
+    int differing = 0;
+};
+Difference difference(const Image& a, const Image& b);
+
 }  // namespace penumbra::testing

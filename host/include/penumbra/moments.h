@@ -55,7 +55,7 @@ inline constexpr float kMsmMomentBias32 = 6e-5f;
 // decoded mean (9.1e-6), rounded up to two 16-bit depth steps, 2 / 65535 =
 // 3.05e-5 (0.4 mm on a 13.5 m depth range). Bits32: one 16-bit step,
 // 2^-16 = 1.5e-5: the depths of a two-depth window come back from float
-// moments to about 1e-6 (the straight-edge test, tests/msm_soft_test.cpp,
+// moments to about 1e-6 (the straight-edge test, tests/kernels/msm_soft_test.cpp,
 // fails at 2^-21), with margin. A sloped receiver needs more: about half a
 // texel's depth change at the receiver (receiver-plane bias; 3e-4 on the
 // overlap scene at 512^2, docs/moments.md).

@@ -1,20 +1,20 @@
-// Measured figures of docs/sdf.md, not checks: error against the ground truth
-// of the classic and improved estimates (contact and fence), the hardness fit,
-// and lane utilisation of row strips against tiles. Disabled by default
-// (tens of seconds: the fence's truth takes 64^2 rays per receiver); run with
-//   penumbra_tests --gtest_also_run_disabled_tests --gtest_filter='SdfFigures.*'
-#include <gtest/gtest.h>
-
+// The measured figures of docs/sdf.md, not checks: error against the ground
+// truth of the classic and improved estimates (contact and fence), the
+// hardness fit, and lane utilisation of row strips against tiles. Tens of
+// seconds each (the fence's truth takes 64^2 rays per receiver).
+// usage: sdf_figures [error|hardness|lanes]...   (default: all three)
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "penumbra/reference.h"
 #include "penumbra/reference/metrics.h"
 #include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
 
-namespace penumbra {
+using namespace penumbra;
+
 namespace {
 
 struct Case {
@@ -22,9 +22,11 @@ struct Case {
     int strata;  // docs/reference.md: truth RMSE below 1e-3 at 32 (contact), 80 (fence: 64 gives ~8e-4)
 };
 
+// docs/sdf.md, "Error against the ground truth": the classic and improved
+// estimates on the analytic scene and the baked grid.
 const char* name_of(SdfEstimate e) { return e == SdfEstimate::Classic ? "classic" : "improved"; }
 
-TEST(SdfFigures, DISABLED_ErrorAgainstGroundTruth)
+void error_against_ground_truth()
 {
     Context ctx;
     std::printf("view 320x240, valid receivers (mask); %s\n", ctx.description().c_str());
@@ -57,9 +59,9 @@ TEST(SdfFigures, DISABLED_ErrorAgainstGroundTruth)
     }
 }
 
-// RMSE for k = fit 2 D / W with D the reference distance (uniform) or each
+// docs/sdf.md, "k from the light": RMSE for k = fit 2 D / W with D the reference distance (uniform) or each
 // receiver's own (per receiver, light_width set), classic estimate, analytic.
-TEST(SdfFigures, DISABLED_HardnessFit)
+void hardness_fit()
 {
     Context ctx;
     std::printf("view 240x180, 24^2 rays per receiver; RMSE of the classic estimate, analytic scene\n");
@@ -82,9 +84,9 @@ TEST(SdfFigures, DISABLED_HardnessFit)
     }
 }
 
-// Active lane-steps / lane-steps for strips along rows (what the backends run)
+// docs/sdf.md, "Lane utilisation": active lane-steps / lane-steps for strips along rows (what the backends run)
 // and for square-ish tiles of the same lane count, at 1920x1080.
-TEST(SdfFigures, DISABLED_LaneUtilisation)
+void lane_utilisation_table()
 {
     Context ctx;
     std::printf("1920x1080, classic estimate; utilisation = active lane-steps / lane-steps\n");
@@ -109,4 +111,20 @@ TEST(SdfFigures, DISABLED_LaneUtilisation)
 }
 
 }  // namespace
-}  // namespace penumbra
+
+int main(int argc, char** argv)
+{
+    std::vector<std::string> tables(argv + 1, argv + argc);
+    if (tables.empty()) tables = {"error", "hardness", "lanes"};
+    for (const std::string& t : tables)
+        if (t != "error" && t != "hardness" && t != "lanes") {
+            std::fprintf(stderr, "usage: sdf_figures [error|hardness|lanes]...\n");
+            return 2;
+        }
+    for (const std::string& t : tables) {
+        if (t == "error") error_against_ground_truth();
+        if (t == "hardness") hardness_fit();
+        if (t == "lanes") lane_utilisation_table();
+    }
+    return 0;
+}

@@ -15,20 +15,29 @@
 #include "penumbra/moments.h"
 #include "support/backends.h"
 #include "support/maps.h"
+#include "support/visibility.h"
 
 namespace penumbra {
 namespace {
 
+using testing::expect_visibility;
 using testing::backend_names;
 using testing::backend_test_name;
 
-void expect_visibility(const Image& out, const std::string& where)
+// Random depths with `extremes` texels (some twice) at 0 or 1, where the
+// warps reach their largest and smallest values.
+Image depth_with_extremes(int w, int h, int extremes, std::mt19937& rng)
 {
-    for (int y = 0; y < out.height(); ++y)
-        for (int x = 0; x < out.width(); ++x) {
-            const float v = out.at(0, x, y);
-            ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f) << where << ": " << v << " at " << x << "," << y;
-        }
+    Image depth = testing::random_depth(w, h, rng());
+    for (int i = 0; i < extremes; ++i) depth.at(0, int(rng() % w), int(rng() % h)) = float(rng() % 2);
+    return depth;
+}
+
+// Receivers on every texel at depths in [-0.1, 1.1]: outside [0, 1] too,
+// which the kernel clamps.
+Image receivers_beyond_the_range(int w, int h, std::mt19937& rng)
+{
+    return testing::receivers_on_texels(w, h, w, h, -0.1f, 1.1f, rng());
 }
 
 EvsmTable evsm_table_for(Context& ctx, const Image& depth, int channels, Quantization q, float cp, float cn)
@@ -121,10 +130,9 @@ PN_BACKEND_TEST(EvsmTest, MatchesTheReferenceOnTheTablesOwnSums)
             const float limit = q == Quantization::Bits16 ? kEvsmMaxExponent16 : kEvsmMaxExponent32;
             for (float cp : {default_evsm_exponent(q, true), limit}) {
                 const int w = 13, h = 9;
-                Image depth = testing::random_depth(w, h, rng());
-                for (int i = 0; i < 20; ++i) depth.at(0, int(rng() % w), int(rng() % h)) = float(rng() % 2);
+                const Image depth = depth_with_extremes(w, h, 20, rng);
                 const EvsmTable table = evsm_table_for(ctx, depth, channels, q, cp, default_evsm_exponent(q, false));
-                Image rx = testing::receivers_on_texels(w, h, w, h, -0.1f, 1.1f, rng());
+                Image rx = receivers_beyond_the_range(w, h, rng);
                 for (int i = 0; i < w * h / 2; ++i) {
                     const int x = int(rng() % w), y = int(rng() % h);
                     rx.at(2, x, y) = depth.at(0, x, y) + 0.02f * (unit(rng) - 0.5f);
@@ -167,10 +175,9 @@ PN_BACKEND_TEST(EvsmTest, DefaultStorageIsTheMethodInDouble)
         for (float cp : {kEvsmPositiveExponentExact, kEvsmMaxExponentExact}) {
             const float cn = channels == 4 ? kEvsmMaxExponentExact : 0.0f;
             const int w = 1 + int(rng() % 23), h = 1 + int(rng() % 11);
-            Image depth = testing::random_depth(w, h, rng());
-            for (int i = 0; i < w * h / 4; ++i) depth.at(0, int(rng() % w), int(rng() % h)) = float(rng() % 2);
+            const Image depth = depth_with_extremes(w, h, w * h / 4, rng);
             const EvsmTable table = build_evsm_table(ctx, depth, EvsmWarp{channels, cp, cn, Quantization::None});
-            Image rx = testing::receivers_on_texels(w, h, w, h, -0.1f, 1.1f, rng());
+            Image rx = receivers_beyond_the_range(w, h, rng);
             for (int i = 0; i < w * h; ++i) {
                 const int x = i % w, y = i / w;
                 if (i % 3 == 0) rx.at(2, x, y) = depth.at(0, x, y);

@@ -13,21 +13,14 @@
 #include "penumbra/moments.h"
 #include "support/backends.h"
 #include "support/maps.h"
+#include "support/visibility.h"
 
 namespace penumbra {
 namespace {
 
+using testing::expect_visibility;
 using testing::backend_names;
 using testing::backend_test_name;
-
-void expect_visibility(const Image& out, const std::string& where)
-{
-    for (int y = 0; y < out.height(); ++y)
-        for (int x = 0; x < out.width(); ++x) {
-            const float v = out.at(0, x, y);
-            ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f) << where << ": " << v << " at " << x << "," << y;
-        }
-}
 
 MsmTable table_for(Context& ctx, const Image& depth, Quantization q)
 {

@@ -322,7 +322,7 @@ class MomentAgreement : public ::testing::TestWithParam<std::string> {};
 PN_BACKEND_TEST(MomentAgreement, EveryBackendAgreesWithScalarOnTheFidelityCases)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Context& scalar = PN_CONTEXT_OR_SKIP("scalar");
+    Context& scalar = testing::scalar_oracle(backend);
     std::map<Method, double> worst;
     std::map<Method, long> differing, total;
     for (const Case& c : cases()) {

@@ -13,48 +13,23 @@
 #include "penumbra/error.h"
 #include "support/backends.h"
 #include "support/maps.h"
+#include "support/visibility.h"
+#include "support/vsm_reference.h"
 
 namespace penumbra {
 namespace {
 
+using testing::expect_visibility;
 using testing::backend_names;
 using testing::backend_test_name;
 
 // ---- the brute-force reference ------------------------------------------------
 
-struct Moments {
-    double mean, mean_sq;
-};
-
-// E[z], E[z^2] over [x0, x1) x [y0, y1) (fractional, inside the map), each
-// texel weighted by the area of it the window covers. The table's bilinear
-// interpolation at fractional corners (kernels/moment_table.h) is the integral
-// of the piecewise-constant map, so these are the same weights. Both tables:
-// of the float32 depths (an exact limb table rounds z, z^2 to 2^-33).
-Moments covered_moments(const Image& depth, Precision precision, double x0, double x1, double y0, double y1)
-{
-    (void)precision;
-    double s1 = 0.0, s2 = 0.0;
-    for (int y = int(std::floor(y0)); y < int(std::ceil(y1)); ++y)
-        for (int x = int(std::floor(x0)); x < int(std::ceil(x1)); ++x) {
-            const double weight = (std::min(x1, x + 1.0) - std::max(x0, double(x))) *
-                                  (std::min(y1, y + 1.0) - std::max(y0, double(y)));
-            const float z = depth.at(0, x, y);
-            const double m1 = z;
-            const double m2 = double(z) * z;
-            s1 += weight * m1;
-            s2 += weight * m2;
-        }
-    const double area = (x1 - x0) * (y1 - y0);
-    return {s1 / area, s2 / area};
-}
-
-double upper_bound(double raw_variance, double d, double min_variance)
-{
-    if (d <= 0.0) return 1.0;
-    const double var = std::max(raw_variance, min_variance);
-    return var / (var + d * d);
-}
+// Window moments over fractional windows and the Chebyshev bound, in double
+// (support/vsm_reference.h).
+using testing::chebyshev_upper_bound;
+using testing::covered_moments;
+using testing::Moments;
 
 // Offsets added to the reference's intermediates, to measure how sensitive the
 // answer is to the kernel's float rounding of them (see vssm_expected).
@@ -77,13 +52,13 @@ VssmTrace vssm_reference(const Image& depth, Precision precision, const VssmOpti
     const double max_radius = precision == Precision::Exact ? kExactMaxRadius - 1 : std::max(w, h);
     const double cx = std::clamp(u, 0.0, 1.0) * w + s.shift, cy = std::clamp(v, 0.0, 1.0) * h + s.shift;
     auto window = [&](double hx, double hy) {
-        return covered_moments(depth, precision, std::clamp(cx - hx, 0.0, w), std::clamp(cx + hx, 0.0, w),
+        return covered_moments(depth, std::clamp(cx - hx, 0.0, w), std::clamp(cx + hx, 0.0, w),
                                std::clamp(cy - hy, 0.0, h), std::clamp(cy + hy, 0.0, h));
     };
     const double L = o.light_size;
     Moments search = window(std::max(L * 0.5 * w, 0.5) + s.half, std::max(L * 0.5 * h, 0.5) + s.half);
     search.mean += s.search_mean;
-    const double p = upper_bound(search.mean_sq - search.mean * search.mean + s.search_var, z - search.mean,
+    const double p = chebyshev_upper_bound(search.mean_sq - search.mean * search.mean + s.search_var, z - search.mean,
                                  o.min_variance);
     const double blocked = 1.0 - p;
     const double z_occ = (search.mean - p * z) / std::max(blocked, 1e-4);
@@ -93,7 +68,7 @@ VssmTrace vssm_reference(const Image& depth, Precision precision, const VssmOpti
     const double hy = std::clamp(penumbra * 0.5 * h, 0.5, max_radius + 0.5) + s.half;
     Moments filter = window(hx, hy);
     filter.mean += s.filter_mean;
-    const double pf = upper_bound(filter.mean_sq - filter.mean * filter.mean + s.filter_var, z - filter.mean,
+    const double pf = chebyshev_upper_bound(filter.mean_sq - filter.mean * filter.mean + s.filter_var, z - filter.mean,
                                   o.min_variance);
     const double visibility = std::clamp((pf - o.bleed) / (1.0 - o.bleed), 0.0, 1.0);
     return {blocked < 1e-4 ? 1.0 : visibility, z_occ, blocked < 1e-4, hx};
@@ -129,15 +104,6 @@ Expected vssm_expected(const Image& depth, Precision precision, const VssmOption
         tolerance += worst;
     }
     return {ref, tolerance};
-}
-
-void expect_visibility(const Image& out)
-{
-    for (int y = 0; y < out.height(); ++y)
-        for (int x = 0; x < out.width(); ++x) {
-            const float v = out.at(0, x, y);
-            ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f) << "visibility " << v << " at " << x << "," << y;
-        }
 }
 
 // One receiver (u, v, z) repeated over a strip-shaped image (every lane of every

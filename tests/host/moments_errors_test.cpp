@@ -7,23 +7,13 @@
 
 #include "penumbra/error.h"
 #include "penumbra/moments.h"
+#include "support/errors.h"
 #include "support/maps.h"
 
 namespace penumbra {
 namespace {
 
-template <class Call>
-void expect_error(Call&& call, ErrorCategory category, const std::string& operation, const std::string& needle)
-{
-    try {
-        call();
-        ADD_FAILURE() << "no error; expected one mentioning \"" << needle << "\"";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.category(), category) << e.what();
-        EXPECT_EQ(e.operation(), operation) << e.what();
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << "\"" << e.what() << "\" lacks " << needle;
-    }
-}
+using testing::expect_error;
 
 constexpr ErrorCategory kArg = ErrorCategory::InvalidArgument;
 constexpr ErrorCategory kData = ErrorCategory::InvalidData;

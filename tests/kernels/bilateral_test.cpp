@@ -2,8 +2,8 @@
 // a brute-force reference in double, a closed-form Gaussian blur on a flat
 // guide, a constant mask, the halo test across a depth step, fully rejected
 // neighbourhoods, odd sizes, and every backend against the scalar one.
-// tests/bilateral_opencv_test.cpp compares with OpenCV; bad input and the
-// `penumbra blur` command are in tests/bilateral_errors_test.cpp.
+// tests/kernels/bilateral_opencv_test.cpp compares with OpenCV; bad input and the
+// `penumbra blur` command are in tests/host/bilateral_errors_test.cpp.
 //
 // Tolerances (masks in [0, 1]). The kernel differs from the reference in
 // double by: its exponential, 2.9e-6 relative (bilateral_exp2_neg); the
@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "bilateral_reference.h"
+#include "support/bilateral_reference.h"
 #include "support/backends.h"
 
 namespace penumbra {
@@ -312,7 +312,7 @@ class BilateralAgreement : public ::testing::TestWithParam<std::string> {};
 PN_BACKEND_TEST(BilateralAgreement, AgreesWithScalarBackend)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Context& oracle = PN_CONTEXT_OR_SKIP(std::string("scalar"));
+    Context& oracle = testing::scalar_oracle(backend);
     const double tolerance = backend == "sse4.2" ? 2e-6 : 2e-7;
     const int w = 67, h = 45;
     const Image guide = testing::structured_guide(w, h, 4);

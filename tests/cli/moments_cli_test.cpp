@@ -16,6 +16,7 @@
 #include "penumbra/moments.h"
 #include "support/cli.h"
 #include "support/maps.h"
+#include "support/shade_inputs.h"
 
 namespace penumbra {
 namespace {
@@ -24,18 +25,8 @@ namespace fs = std::filesystem;
 
 using testing::slurp;
 
-class MomentsCli : public testing::CliFixture {
+class MomentsCli : public testing::ShadeInputs {
 protected:
-    void SetUp() override
-    {
-        CliFixture::SetUp();
-        map_ = testing::random_depth(37, 23, 4);
-        rx_ = testing::receivers_on_texels(29, 17, 37, 23, 0.2f, 0.9f, 8);
-        write_exr(path("sm.exr"), map_, {"Z"});
-        write_exr(path("rx.exr"), rx_, {"u", "v", "z"});
-    }
-
-
     int run(const std::string& args, std::string* err = nullptr) const
     {
         const std::string cmd = std::string(PENUMBRA_CLI_PATH) + " shade --shadow-map " + path("sm.exr") +
@@ -68,7 +59,6 @@ protected:
         EXPECT_EQ(slurp(path("out.exr")), "previous contents");
     }
 
-    Image map_, rx_;
 };
 
 TEST_F(MomentsCli, EveryMethodMatchesTheLibrary)

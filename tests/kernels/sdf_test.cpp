@@ -17,12 +17,14 @@
 #include "penumbra/reference.h"
 #include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
-#include "sdf_test_scenes.h"
+#include "support/sdf_test_scenes.h"
 #include "support/backends.h"
+#include "support/visibility.h"
 
 namespace penumbra {
 namespace {
 
+using testing::expect_visibility;
 using reference::Vec3;
 using testing::backend_names;
 using testing::backend_test_name;
@@ -32,15 +34,6 @@ class SdfTest : public ::testing::TestWithParam<std::string> {};
 const SdfEstimate kEstimates[] = {SdfEstimate::Classic, SdfEstimate::Improved};
 
 const char* name_of(SdfEstimate e) { return e == SdfEstimate::Classic ? "classic" : "improved"; }
-
-void expect_unit_range(const Image& out)
-{
-    for (int y = 0; y < out.height(); ++y)
-        for (int x = 0; x < out.width(); ++x) {
-            const float v = out.at(0, x, y);
-            ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f) << "visibility " << v << " at " << x << "," << y;
-        }
-}
 
 // Receivers on the ground along x, through the sphere's shadow, normals up.
 struct Profile {
@@ -74,7 +67,7 @@ PN_BACKEND_TEST(SdfTest, SphereOverPlaneAgainstTheIdealEstimate)
     for (SdfEstimate estimate : kEstimates) {
         const SdfOptions o = sdf_options_for(scene, estimate);
         const Image out = sdf_shadows(ctx, reference::analytic_scene(scene.primitives), profile.positions, &profile.normals, o);
-        expect_unit_range(out);
+        expect_visibility(out);
         double worst = 0.0;
         for (int i = 0; i < 81; ++i) {
             const double ideal = testing::ideal_visibility(prepared, o, profile.points[i], {0, 1, 0});
@@ -147,7 +140,7 @@ PN_BACKEND_TEST(SdfTest, GridAgreesWithTheAnalyticScene)
         const SdfOptions o = sdf_options_for(scene, estimate);
         const Image a = sdf_shadows(ctx, reference::analytic_scene(scene.primitives), profile.positions, &profile.normals, o);
         const Image g = sdf_shadows(ctx, grid, profile.positions, &profile.normals, o);
-        expect_unit_range(g);
+        expect_visibility(g);
         double worst = 0.0;
         for (int i = 0; i < 81; ++i) worst = std::max(worst, double(std::abs(a.at(0, i, 0) - g.at(0, i, 0))));
         std::cout << "[ sdf ] " << backend << " " << name_of(estimate) << ": largest |grid - analytic| " << worst
@@ -319,7 +312,7 @@ PN_BACKEND_TEST(SdfTest, ReceiversOutsideTheGrid)
         const SdfOptions o = sdf_options_for(scene, estimate);
         const Image g = sdf_shadows(ctx, grid, rx, &up, o);
         const Image a = sdf_shadows(ctx, reference::analytic_scene(scene.primitives), rx, &up, o);
-        expect_unit_range(g);
+        expect_visibility(g);
         EXPECT_EQ(g.at(0, 0, 0), 0.0f);
         EXPECT_EQ(g.at(0, 1, 0), 0.0f);
         EXPECT_NEAR(g.at(0, 2, 0), a.at(0, 2, 0), 0.05);
@@ -390,7 +383,7 @@ class SdfAgreement : public ::testing::TestWithParam<std::string> {};
 PN_BACKEND_TEST(SdfAgreement, AgreesWithTheScalarOracle)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Context& oracle = PN_CONTEXT_OR_SKIP("scalar");
+    Context& oracle = testing::scalar_oracle(backend);
     const ContactReceivers& c = contact();
     for (bool use_grid : {false, true})
         for (SdfEstimate estimate : kEstimates) {

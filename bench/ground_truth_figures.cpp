@@ -1,18 +1,27 @@
-// Measurement, not a check: ground-truth throughput and its error against a
-// run with 4x the samples, per built-in scene. Disabled in the default run;
-//   penumbra_tests --gtest_also_run_disabled_tests --gtest_filter='*GroundTruthFigures*'
-// prints the table quoted in docs/reference.md.
-#include <gtest/gtest.h>
-
+// The ground-truth table of docs/reference.md, a measurement, not a check:
+// per built-in scene, the valid fraction, the truth's convergence (RMSE of
+// each run against one with 4x the samples, 8^2 .. 64^2 rays per receiver)
+// and its throughput in receiver-samples (shadow rays) per second of wall
+// clock and of process CPU time. The shadow-map render time is a benchmark:
+// penumbra_bench --benchmark_filter=reference_shadow_map (bench/reference_bench.cpp).
+// usage: ground_truth_figures [width height]   (default 160 120, the doc's)
 #include <chrono>
-#include <ctime>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <string>
+#include <utility>
+#include <vector>
+
 #include <tbb/info.h>
 
 #include "penumbra/reference.h"
 #include "penumbra/reference/metrics.h"
 
-namespace penumbra::reference {
+using namespace penumbra;
+using namespace penumbra::reference;
+
 namespace {
 
 // Wall-clock and process CPU time (all threads): on a machine shared with
@@ -40,22 +49,21 @@ double count(const Image& mask)
     return n;
 }
 
-TEST(ReferenceThroughput, DISABLED_GroundTruthFigures)
+void print_table(int width, int height)
 {
-    constexpr int kWidth = 160, kHeight = 120;
     const int strata[] = {8, 16, 32, 64};
-    std::printf("receivers %dx%d, %d threads; samples/s counts receiver-samples (shadow rays)\n", kWidth,
-                kHeight, tbb::info::default_concurrency());
+    std::printf("receivers %dx%d, %d threads; samples/s counts receiver-samples (shadow rays)\n", width,
+                height, tbb::info::default_concurrency());
     std::printf("%-8s %6s %13s %13s %13s %12s %14s\n", "scene", "valid", "RMSE 8 v 16", "RMSE 16 v 32",
                 "RMSE 32 v 64", "Msamples/s", "Msamples/cpu-s");
     for (const std::string& name : builtin_scene_names()) {
         const Scene scene = builtin_scene(name);
-        const Receivers receivers = render_receivers(scene, kWidth, kHeight);
+        const Receivers receivers = render_receivers(scene, width, height);
         std::vector<TimedTruth> runs;
         for (int n : strata) runs.push_back(timed_truth(scene, receivers, n));
         const double hits = count(receivers.hit);
         const double samples = hits * 64.0 * 64.0;  // in the last, largest run
-        const double valid = count(receivers.mask) / (kWidth * kHeight);
+        const double valid = count(receivers.mask) / (width * height);
         std::printf("%-8s %6.3f %13.5f %13.5f %13.5f %12.1f %14.1f\n", name.c_str(), valid,
                     reference::rmse(runs[0].truth, runs[1].truth, &receivers.mask),
                     reference::rmse(runs[1].truth, runs[2].truth, &receivers.mask),
@@ -64,17 +72,15 @@ TEST(ReferenceThroughput, DISABLED_GroundTruthFigures)
     }
 }
 
-TEST(ReferenceThroughput, DISABLED_LargeShadowMapTime)
-{
-    const Scene scene = builtin_scene("large");
-    for (int size : {1024, 4096}) {
-        const auto start = std::chrono::steady_clock::now();
-        const Image map = render_shadow_map(scene, size, size);
-        const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
-        std::printf("large: %dx%d shadow map in %.2f s (%.1f Mrays/s)\n", size, size, elapsed.count(),
-                    double(size) * size / elapsed.count() / 1e6);
-    }
-}
-
 }  // namespace
-}  // namespace penumbra::reference
+
+int main(int argc, char** argv)
+{
+    const int width = argc == 3 ? std::atoi(argv[1]) : 160, height = argc == 3 ? std::atoi(argv[2]) : 120;
+    if ((argc != 1 && argc != 3) || width < 1 || height < 1 || width > 8192 || height > 8192) {
+        std::fprintf(stderr, "usage: ground_truth_figures [width height, 1..8192]\n");
+        return 2;
+    }
+    print_table(width, height);
+    return 0;
+}

@@ -15,7 +15,8 @@
 #include "penumbra/reference.h"
 #include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
-#include "sdf_test_scenes.h"
+#include "support/errors.h"
+#include "support/sdf_test_scenes.h"
 
 namespace penumbra {
 namespace {
@@ -23,16 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 using reference::Vec3;
 
-void expect_error(const std::function<void()>& call, ErrorCategory category, const std::string& needle)
-{
-    try {
-        call();
-        ADD_FAILURE() << "no error; expected one mentioning '" << needle << "'";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.category(), category) << e.what();
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
-}
+using testing::expect_error;
 
 struct Fixture {
     Context ctx{ContextOptions{Backend::Scalar, {}}};

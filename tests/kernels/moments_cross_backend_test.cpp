@@ -6,7 +6,7 @@
 //  - msm, msm-soft: the lookups run the same operations in the same order
 //    everywhere with contraction off and correctly rounded division and
 //    square root, so SIMD must match scalar to the bit and OpenCL (PoCL) to
-//    1e-5, as VSM's (tests/chebyshev_test.cpp);
+//    1e-5, as VSM's (tests/kernels/chebyshev_test.cpp);
 //  - evsm: the warp's exp() differs by an ulp or two between xsimd, libm and
 //    OpenCL, which the bound can amplify where the receiver's warped depth
 //    nears the window mean: 2e-5 (measured: 6.7e-6).
@@ -33,22 +33,8 @@ namespace {
 
 using testing::backend_test_name;
 
-struct Difference {
-    double max = 0.0;
-    int differing = 0;
-};
-
-Difference difference(const Image& a, const Image& b)
-{
-    Difference d;
-    for (int y = 0; y < a.height(); ++y)
-        for (int x = 0; x < a.width(); ++x) {
-            const double diff = std::abs(double(a.at(0, x, y)) - b.at(0, x, y));
-            d.max = std::max(d.max, diff);
-            d.differing += diff != 0.0;
-        }
-    return d;
-}
+using testing::Difference;
+using testing::difference;
 
 Image cross_receivers(const Image& depth, std::uint32_t seed)
 {
@@ -86,7 +72,7 @@ class MomentsCrossBackendTest : public ::testing::TestWithParam<std::string> {};
 PN_BACKEND_TEST(MomentsCrossBackendTest, AgreesWithScalar)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Context& scalar = PN_CONTEXT_OR_SKIP("scalar");
+    Context& scalar = testing::scalar_oracle(backend);
     const Image depth = cross_depth();
     const Image rx = cross_receivers(depth, 43);
     const bool simd = backend != "opencl";

@@ -18,7 +18,7 @@
 // Tolerance: OpenCV's table interpolates exp(-x^2 / (2 s^2)) with a step h =
 // range / 4096, an error of at most h^2 / (8 s^2) (the second derivative is
 // at most 1 / s^2): 1e-6 for a range of 0.5 and s = 0.05; penumbra's weights
-// are within 6e-6 relative (tests/bilateral_test.cpp); both sum in float.
+// are within 6e-6 relative (tests/kernels/bilateral_test.cpp); both sum in float.
 // The normalised results then differ by less than 2 (1e-6 + 6e-6) plus the
 // float sums: 3e-5 for masks in [0, 1].
 #include <gtest/gtest.h>
@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "bilateral_reference.h"
+#include "support/bilateral_reference.h"
 #include "penumbra/bilateral.h"
 #include "support/backends.h"
 

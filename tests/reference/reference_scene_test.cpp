@@ -9,22 +9,12 @@
 
 #include "penumbra/error.h"
 #include "penumbra/reference/scene.h"
+#include "support/errors.h"
 
 namespace penumbra::reference {
 namespace {
 
-// Runs `f`, expects an Error of `category` whose message contains `fragment`.
-template <class F>
-void expect_error(F&& f, ErrorCategory category, const std::string& fragment)
-{
-    try {
-        f();
-        ADD_FAILURE() << "expected an Error containing \"" << fragment << "\"";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.category(), category) << e.what();
-        EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-    }
-}
+using testing::expect_error;
 
 // A small valid scene as JSON text, with `primitives` spliced in.
 std::string scene_text(const std::string& primitives)

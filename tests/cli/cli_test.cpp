@@ -17,6 +17,7 @@
 #include "penumbra/moment_table.h"
 #include "support/cli.h"
 #include "support/maps.h"
+#include "support/shade_inputs.h"
 
 namespace penumbra {
 namespace {
@@ -30,18 +31,8 @@ struct CliRun {
 
 using testing::slurp;
 
-class CliTest : public testing::CliFixture {
+class CliTest : public testing::ShadeInputs {
 protected:
-    void SetUp() override
-    {
-        CliFixture::SetUp();
-        map_ = testing::random_depth(37, 23, 4);
-        rx_ = testing::receivers_on_texels(29, 17, 37, 23, 0.2f, 0.9f, 8);
-        write_exr(path("sm.exr"), map_, {"Z"});
-        write_exr(path("rx.exr"), rx_, {"u", "v", "z"});
-    }
-
-
     CliRun run(const std::string& args, const std::string& env = "") const
     {
         const std::string cmd = env + " " PENUMBRA_CLI_PATH " " + args + " >" + path("stdout") + " 2>" + path("stderr");
@@ -69,7 +60,6 @@ protected:
             EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
     }
 
-    Image map_, rx_;
 };
 
 TEST_F(CliTest, ShadeWritesVisibilityMatchingTheLibrary)

@@ -25,29 +25,16 @@
 #include <optional>
 
 #include "penumbra/error.h"
+#include "support/cli.h"
+#include "support/errors.h"
 
 namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Runs `action` and returns the penumbra::Error it threw. Any other exception
-// escapes and fails the test, which is the point: none may leak out.
-template <class Action>
-std::optional<Error> error_from(Action&& action)
-{
-    try {
-        action();
-    } catch (const Error& error) {
-        return error;
-    }
-    return std::nullopt;
-}
-
-bool mentions(const Error& error, const std::string& text)
-{
-    return std::string(error.what()).find(text) != std::string::npos;
-}
+using testing::error_from;
+using testing::mentions;
 
 std::string contents_of(const fs::path& path)
 {
@@ -99,22 +86,8 @@ void expect_plane_bits_equal(const Image& actual, int actual_c, const Image& exp
                 << "at (" << x << ", " << y << ")";
 }
 
-class ExrIoTest : public ::testing::Test {
-protected:
-    void SetUp() override
-    {
-        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-        directory_ =
-            fs::temp_directory_path() / ("penumbra-exr-" + std::to_string(::getpid()) + "-" + test->name());
-        fs::remove_all(directory_);
-        fs::create_directories(directory_);
-    }
-    void TearDown() override { fs::remove_all(directory_); }
-
-    std::string path(const std::string& name) const { return (directory_ / name).string(); }
-
-    fs::path directory_;
-};
+// A fresh scratch folder per test (support/cli.h).
+class ExrIoTest : public testing::CliFixture {};
 
 TEST_F(ExrIoTest, RoundTripIsBitExact)
 {
@@ -150,7 +123,7 @@ TEST_F(ExrIoTest, OverwritesAnExistingFile)
 
     EXPECT_EQ(exr_channel_names(path("a.exr")), (std::vector<std::string>{"c"}));
     expect_plane_bits_equal(read_exr(path("a.exr"), {"c"}), 0, second, 0);
-    EXPECT_EQ(entries_of(directory_), (std::vector<std::string>{"a.exr"}));  // no temporary left
+    EXPECT_EQ(entries_of(dir_), (std::vector<std::string>{"a.exr"}));  // no temporary left
 }
 
 // Written with the OpenEXR API directly: a data window whose corner is not the
@@ -216,7 +189,7 @@ TEST_F(ExrIoTest, TextFileIsNotAnExr)
 
 TEST_F(ExrIoTest, DirectoryIsNotAnExr)
 {
-    const auto error = error_from([&] { exr_channel_names(directory_.string()); });
+    const auto error = error_from([&] { exr_channel_names(dir_.string()); });
     ASSERT_TRUE(error);
     EXPECT_EQ(error->category(), ErrorCategory::Io);
     EXPECT_TRUE(mentions(*error, "is a directory")) << error->what();
@@ -294,7 +267,7 @@ TEST_F(ExrIoTest, ChannelCountMismatchLeavesTheExistingTargetUntouched)
     EXPECT_EQ(error->category(), ErrorCategory::InvalidArgument);
     EXPECT_TRUE(mentions(*error, "2 channels but 1 name was given")) << error->what();
     EXPECT_EQ(contents_of(path("keep.exr")), "previous contents");
-    EXPECT_EQ(entries_of(directory_), (std::vector<std::string>{"keep.exr"}));
+    EXPECT_EQ(entries_of(dir_), (std::vector<std::string>{"keep.exr"}));
 }
 
 TEST_F(ExrIoTest, EmptyImageIsNotWritten)
@@ -302,7 +275,7 @@ TEST_F(ExrIoTest, EmptyImageIsNotWritten)
     const auto error = error_from([&] { write_exr(path("empty.exr"), Image(0, 4, 1), {"Z"}); });
     ASSERT_TRUE(error);
     EXPECT_EQ(error->category(), ErrorCategory::InvalidArgument);
-    EXPECT_TRUE(entries_of(directory_).empty());
+    EXPECT_TRUE(entries_of(dir_).empty());
 }
 
 TEST_F(ExrIoTest, WriteIntoMissingDirectoryCreatesNothing)
@@ -313,7 +286,7 @@ TEST_F(ExrIoTest, WriteIntoMissingDirectoryCreatesNothing)
     EXPECT_EQ(error->category(), ErrorCategory::Io);
     EXPECT_TRUE(mentions(*error, target)) << error->what();
     EXPECT_TRUE(mentions(*error, "does not exist")) << error->what();
-    EXPECT_TRUE(entries_of(directory_).empty());
+    EXPECT_TRUE(entries_of(dir_).empty());
 }
 
 // The pixels reach the temporary file, but rename(2) cannot put a file over a
@@ -327,7 +300,7 @@ TEST_F(ExrIoTest, FailedRenameLeavesTargetAndNoTemporary)
     EXPECT_EQ(error->category(), ErrorCategory::Io);
     EXPECT_TRUE(mentions(*error, path("target.exr"))) << error->what();
     EXPECT_EQ(contents_of(path("target.exr/inside")), "kept");
-    EXPECT_EQ(entries_of(directory_), (std::vector<std::string>{"target.exr"}));
+    EXPECT_EQ(entries_of(dir_), (std::vector<std::string>{"target.exr"}));
 }
 
 }  // namespace

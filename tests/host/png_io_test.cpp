@@ -4,7 +4,6 @@
 #include "penumbra/png_io.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -18,6 +17,8 @@
 #include <vector>
 
 #include "penumbra/error.h"
+#include "support/cli.h"
+#include "support/errors.h"
 
 namespace penumbra {
 namespace {
@@ -25,21 +26,8 @@ namespace {
 namespace fs = std::filesystem;
 using Bytes = std::vector<std::uint8_t>;
 
-template <class Action>
-std::optional<Error> error_from(Action&& action)
-{
-    try {
-        action();
-    } catch (const Error& error) {
-        return error;
-    }
-    return std::nullopt;
-}
-
-bool mentions(const Error& error, const std::string& text)
-{
-    return std::string(error.what()).find(text) != std::string::npos;
-}
+using testing::error_from;
+using testing::mentions;
 
 Bytes bytes_of(const fs::path& path)
 {
@@ -101,22 +89,8 @@ void expect_well_formed(const std::vector<Chunk>& chunks)
     for (const Chunk& chunk : chunks) EXPECT_TRUE(chunk.crc_valid) << chunk.type;
 }
 
-class PngIoTest : public ::testing::Test {
-protected:
-    void SetUp() override
-    {
-        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-        directory_ =
-            fs::temp_directory_path() / ("penumbra-png-" + std::to_string(::getpid()) + "-" + test->name());
-        fs::remove_all(directory_);
-        fs::create_directories(directory_);
-    }
-    void TearDown() override { fs::remove_all(directory_); }
-
-    std::string path(const std::string& name) const { return (directory_ / name).string(); }
-
-    fs::path directory_;
-};
+// A fresh scratch folder per test (support/cli.h).
+class PngIoTest : public testing::CliFixture {};
 
 TEST_F(PngIoTest, RgbImageDecodesToTheExpectedScanlines)
 {
@@ -239,7 +213,7 @@ TEST_F(PngIoTest, UnsupportedImagesAreRefusedAndTheTargetKept)
     }
     const Bytes kept = bytes_of(path("keep.png"));
     EXPECT_EQ(std::string(kept.begin(), kept.end()), "previous contents");
-    EXPECT_EQ(std::distance(fs::directory_iterator(directory_), fs::directory_iterator()), 1);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
 }
 
 TEST_F(PngIoTest, WriteIntoMissingDirectoryIsAnIoError)
@@ -249,7 +223,7 @@ TEST_F(PngIoTest, WriteIntoMissingDirectoryIsAnIoError)
     ASSERT_TRUE(error);
     EXPECT_EQ(error->category(), ErrorCategory::Io);
     EXPECT_TRUE(mentions(*error, target)) << error->what();
-    EXPECT_TRUE(fs::is_empty(directory_));
+    EXPECT_TRUE(fs::is_empty(dir_));
 }
 
 TEST_F(PngIoTest, FailedRenameLeavesTargetAndNoTemporary)
@@ -259,7 +233,7 @@ TEST_F(PngIoTest, FailedRenameLeavesTargetAndNoTemporary)
     ASSERT_TRUE(error);
     EXPECT_EQ(error->category(), ErrorCategory::Io);
     EXPECT_TRUE(fs::is_directory(path("target.png")));
-    EXPECT_EQ(std::distance(fs::directory_iterator(directory_), fs::directory_iterator()), 1);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
 }
 
 }  // namespace

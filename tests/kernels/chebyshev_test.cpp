@@ -15,44 +15,27 @@
 
 #include "penumbra/error.h"
 #include "support/backends.h"
+#include "support/errors.h"
 #include "support/maps.h"
+#include "support/visibility.h"
+#include "support/vsm_reference.h"
 
 namespace penumbra {
 namespace {
 
+using testing::expect_visibility;
 using testing::backend_names;
 using testing::backend_test_name;
 
 // ---- the independent reference ------------------------------------------------
 
-// A window's E[z] and E[z^2] in double, of the float32 depths themselves: an
-// exact (limb) table rounds z and z^2 to 2^-33 (kernels/moment_table.h),
-// far inside the slack below; a float table of dyadic depths is exact.
-struct Moments {
-    double mean, mean_sq;
-};
-
-Moments window_moments(const Image& depth, Precision precision, int x0, int x1, int y0, int y1)
-{
-    double s1 = 0.0, s2 = 0.0;
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) {
-            const float z = depth.at(0, x, y);
-            s1 += z;
-            s2 += double(z) * z;
-        }
-    (void)precision;
-    const double area = double(x1 - x0) * (y1 - y0);
-    return {s1 / area, s2 / area};
-}
-
-// p_max = var / (var + d^2) for d = z - mean > 0, else 1; var floored.
-double upper_bound(double raw_variance, double d, double min_variance)
-{
-    if (d <= 0.0) return 1.0;
-    const double var = std::max(raw_variance, min_variance);
-    return var / (var + d * d);
-}
+// A window's E[z] and E[z^2] in double, of the float32 depths themselves
+// (support/vsm_reference.h): an exact (limb) table rounds z and z^2 to 2^-33
+// (kernels/moment_table.h), far inside the slack below; a float table of
+// dyadic depths is exact.
+using testing::chebyshev_upper_bound;
+using testing::covered_moments;
+using testing::Moments;
 
 double linstep(double lo, double hi, double v) { return std::clamp((v - lo) / (hi - lo), 0.0, 1.0); }
 
@@ -81,9 +64,9 @@ Expected chebyshev_expected(Moments m, double z, double min_variance, double ble
 {
     const double raw = m.mean_sq - m.mean * m.mean;
     const double d = z - m.mean;
-    const double p = upper_bound(raw, d, min_variance);
-    const double p_lo = upper_bound(raw - kVarianceSlack, d + kDistanceSlack, min_variance);
-    const double p_hi = upper_bound(raw + kVarianceSlack, d - kDistanceSlack, min_variance);
+    const double p = chebyshev_upper_bound(raw, d, min_variance);
+    const double p_lo = chebyshev_upper_bound(raw - kVarianceSlack, d + kDistanceSlack, min_variance);
+    const double p_hi = chebyshev_upper_bound(raw + kVarianceSlack, d - kDistanceSlack, min_variance);
     const double slack = kRoundingSlack / (1.0 - bleed);
     return {linstep(bleed, 1.0, p), linstep(bleed, 1.0, p_lo) - slack, linstep(bleed, 1.0, p_hi) + slack};
 }
@@ -94,8 +77,8 @@ Expected vsm_expected(const Image& depth, Precision precision, float u, float v,
     const int w = depth.width(), h = depth.height();
     const int tx = std::clamp(int(std::floor(std::clamp(double(u), 0.0, 1.0) * w)), 0, w - 1);
     const int ty = std::clamp(int(std::floor(std::clamp(double(v), 0.0, 1.0) * h)), 0, h - 1);
-    const Moments m = window_moments(depth, precision, std::max(tx - o.radius, 0), std::min(tx + o.radius + 1, w),
-                                     std::max(ty - o.radius, 0), std::min(ty + o.radius + 1, h));
+    const Moments m = covered_moments(depth, std::max(tx - o.radius, 0), std::min(tx + o.radius + 1, w),
+                                      std::max(ty - o.radius, 0), std::min(ty + o.radius + 1, h));
     return chebyshev_expected(m, z, o.min_variance, o.bleed);
 }
 
@@ -121,15 +104,6 @@ Image vsm_receivers(const Image& depth, std::uint32_t seed)
             rx.at(2, x, y) = rng() % 3 == 0 ? depth.at(0, x, ty) + near(rng) : anywhere(rng);
         }
     return rx;
-}
-
-void expect_visibility(const Image& out)
-{
-    for (int y = 0; y < out.height(); ++y)
-        for (int x = 0; x < out.width(); ++x) {
-            const float v = out.at(0, x, y);
-            ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f) << "visibility " << v << " at " << x << "," << y;
-        }
 }
 
 // ---- VSM against the closed form, every backend --------------------------------
@@ -307,27 +281,13 @@ Image cross_receivers(std::uint32_t seed)
     return rx;
 }
 
-struct Difference {
-    double max = 0.0;
-    int differing = 0;
-};
-
-Difference difference(const Image& a, const Image& b)
-{
-    Difference d;
-    for (int y = 0; y < a.height(); ++y)
-        for (int x = 0; x < a.width(); ++x) {
-            const double diff = std::abs(double(a.at(0, x, y)) - b.at(0, x, y));
-            d.max = std::max(d.max, diff);
-            d.differing += diff != 0.0;
-        }
-    return d;
-}
+using testing::Difference;
+using testing::difference;
 
 PN_BACKEND_TEST(ChebyshevCrossBackendTest, AgreesWithScalar)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Context& scalar = PN_CONTEXT_OR_SKIP("scalar");
+    Context& scalar = testing::scalar_oracle(backend);
     const Image depth = testing::random_depth(131, 29, 41);
     const Image rx = cross_receivers(43);
     const bool simd = backend != "opencl";
@@ -367,18 +327,7 @@ INSTANTIATE_TEST_SUITE_P(Backends, ChebyshevCrossBackendTest, ::testing::ValuesI
 
 // ---- bad input: penumbra::Error naming the operation and the parameter ------------
 
-template <class Call>
-void expect_error(Call&& call, ErrorCategory category, const std::string& operation, const std::string& needle)
-{
-    try {
-        call();
-        ADD_FAILURE() << "no error; expected one mentioning \"" << needle << "\"";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.category(), category) << e.what();
-        EXPECT_EQ(e.operation(), operation) << e.what();
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << "\"" << e.what() << "\" lacks " << needle;
-    }
-}
+using testing::expect_error;
 
 TEST(ChebyshevErrors, RejectsBadReceiversAndFilterSettings)
 {

@@ -14,13 +14,14 @@
 
 #include <chrono>
 #include <cmath>
-#include <utility>
-#include <vector>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
@@ -51,16 +52,66 @@ void put_bytes(const std::string& file, const std::string& bytes)
     std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
 }
 
-// Rewrites the header's dataWindow attribute (name, type "box2i", size 16, then
-// xMin yMin xMax yMax as little-endian int32: the OpenEXR file layout).
+// One attribute of a header, as the OpenEXR file layout stores it after the
+// 4-byte magic number and the 4-byte version: name and type (each ending in a
+// null byte), a little-endian int32 size, then the value. The header ends at
+// a null byte where the next name would start.
+struct HeaderAttribute {
+    std::string name;
+    std::size_t size_at;  // offset of the size; the value follows it
+    std::int32_t size;
+    std::size_t value_at() const { return size_at + 4; }
+    std::size_t end() const { return value_at() + std::size_t(size); }
+};
+
+std::vector<HeaderAttribute> header_attributes(const std::string& bytes)
+{
+    std::vector<HeaderAttribute> attributes;
+    std::size_t at = 8;
+    while (bytes.at(at) != '\0') {
+        const std::size_t type = bytes.find('\0', at) + 1, size_at = bytes.find('\0', type) + 1;
+        HeaderAttribute a{bytes.substr(at, type - 1 - at), size_at, 0};
+        std::memcpy(&a.size, bytes.data() + size_at, sizeof a.size);
+        attributes.push_back(a);
+        at = a.end();
+    }
+    return attributes;
+}
+
+// The attribute called `name` (throws, failing the test, when there is none).
+HeaderAttribute attribute(const std::string& bytes, const std::string& name)
+{
+    for (const HeaderAttribute& a : header_attributes(bytes))
+        if (a.name == name) return a;
+    throw std::runtime_error("the header has no attribute " + name);
+}
+
+// The offset of the header's closing null byte.
+std::size_t header_end(const std::string& bytes) { return header_attributes(bytes).back().end(); }
+
+// Overwrites the bytes at `at` with those of `value`.
+template <typename T>
+void overwrite(std::string& bytes, std::size_t at, const T& value)
+{
+    ASSERT_LE(at + sizeof value, bytes.size());
+    std::memcpy(bytes.data() + at, &value, sizeof value);
+}
+
+// `file` with the size of attribute `name` rewritten to `size`.
+const std::string& with_declared_size(const std::string& file, const std::string& name, std::int32_t size)
+{
+    std::string bytes = bytes_of(file);
+    overwrite(bytes, attribute(bytes, name).size_at, size);
+    put_bytes(file, bytes);
+    return file;
+}
+
+// Rewrites the header's dataWindow attribute (type "box2i": xMin yMin xMax yMax).
 void set_data_window(const std::string& file, std::int32_t x_max, std::int32_t y_max)
 {
     std::string bytes = bytes_of(file);
-    const std::string key("dataWindow\0box2i\0", 17);
-    const std::size_t at = bytes.find(key);
-    ASSERT_NE(at, std::string::npos);
     const std::int32_t box[4] = {0, 0, x_max, y_max};
-    std::memcpy(bytes.data() + at + key.size() + 4, box, sizeof box);
+    overwrite(bytes, attribute(bytes, "dataWindow").value_at(), box);
     put_bytes(file, bytes);
 }
 
@@ -126,15 +177,7 @@ TEST_F(ExrRobustness, HugeClaimsAreRefusedBeforeAllocating)
 // attribute's value at the size the header claims (1.6 GB from 469 bytes).
 TEST_F(ExrRobustness, AttributeSizeBeyondTheFileIsRefused)
 {
-    const std::string file = valid_file("attribute.exr");
-    std::string bytes = bytes_of(file);
-    const std::string key("lineOrder\0lineOrder\0", 20);
-    const std::size_t at = bytes.find(key);
-    ASSERT_NE(at, std::string::npos);
-    const std::int32_t claim = 1851877475;
-    std::memcpy(bytes.data() + at + key.size(), &claim, sizeof claim);
-    put_bytes(file, bytes);
-    expect_refused(file, "claims 1851877475 bytes");
+    expect_refused(with_declared_size(valid_file("attribute.exr"), "lineOrder", 1851877475), "claims 1851877475 bytes");
 }
 
 // Found by exr_reader_fuzz: OpenEXR's C++ reader reads a fixed-size value by
@@ -142,20 +185,10 @@ TEST_F(ExrRobustness, AttributeSizeBeyondTheFileIsRefused)
 // every later attribute (and then a garbage size is allocated).
 TEST_F(ExrRobustness, FixedSizeAttributeWithAnotherDeclaredSizeIsRefused)
 {
-    const std::string file = valid_file("declared.exr");
-    std::string bytes = bytes_of(file);
-    const std::string key("displayWindow\0box2i\0", 20);
-    const std::size_t at = bytes.find(key);
-    ASSERT_NE(at, std::string::npos);
-    const std::int32_t declared = 0;
-    std::memcpy(bytes.data() + at + key.size(), &declared, sizeof declared);
-    put_bytes(file, bytes);
-    expect_refused(file, "declares 0 bytes but its value takes 16");
+    expect_refused(with_declared_size(valid_file("declared.exr"), "displayWindow", 0),
+                   "declares 0 bytes but its value takes 16");
 }
 
-// Found by exr_reader_fuzz: a scanline file whose header also carries a
-// `tiles` attribute has 0 scanlines per chunk for the core library (a division
-// by zero in the chunk walk).
 // Found by exr_reader_fuzz (a 2 KB DWAA file, 1.6 GB of line buffers): a
 // second dataWindow attribute. The core library, whose reading is checked,
 // and OpenEXR's C++ reader, which wins with the later value, saw different
@@ -164,32 +197,25 @@ TEST_F(ExrRobustness, AttributeNamedTwiceIsRefused)
 {
     const std::string file = valid_file("twice.exr");
     std::string bytes = bytes_of(file);
-    const std::string key("dataWindow\0box2i\0", 17);
-    const std::size_t at = bytes.find(key);
-    ASSERT_NE(at, std::string::npos);
     const std::int32_t claim[5] = {16, 0, 0, 3604488, 11};  // size, then xMin yMin xMax yMax
-    std::string second = key;
+    std::string second("dataWindow\0box2i\0", 17);
     second.append(reinterpret_cast<const char*>(claim), sizeof claim);
-    bytes.insert(at + key.size() + 4 + 16, second);  // right after the first one's value
+    bytes.insert(attribute(bytes, "dataWindow").end(), second);  // right after the first one
     put_bytes(file, bytes);
     expect_refused(file, "'dataWindow' twice");
 }
 
+// Found by exr_reader_fuzz: a scanline file whose header also carries a
+// `tiles` attribute has 0 scanlines per chunk for the core library (a division
+// by zero in the chunk walk).
 TEST_F(ExrRobustness, ScanlineFileWithATileDescriptionIsRefused)
 {
     const std::string file = valid_file("tiles.exr");
     std::string bytes = bytes_of(file);
-    std::size_t end = 8;  // walk the attributes to the header's closing null byte
-    while (bytes.at(end) != '\0') {
-        const std::size_t type = bytes.find('\0', end) + 1, size_at = bytes.find('\0', type) + 1;
-        std::int32_t size = 0;
-        std::memcpy(&size, bytes.data() + size_at, sizeof size);
-        end = size_at + 4 + std::size_t(size);
-    }
     const std::uint32_t tiles[2] = {8, 4};
-    std::string attribute("tiles\0tiledesc\0\x09\0\0\0", 19);
-    attribute.append(reinterpret_cast<const char*>(tiles), sizeof tiles).push_back('\0');
-    bytes.insert(end, attribute);
+    std::string tiledesc("tiles\0tiledesc\0\x09\0\0\0", 19);
+    tiledesc.append(reinterpret_cast<const char*>(tiles), sizeof tiles).push_back('\0');
+    bytes.insert(header_end(bytes), tiledesc);
     put_bytes(file, bytes);
     expect_refused(file, "0 scanlines per chunk");
 }
@@ -219,14 +245,9 @@ TEST_F(ExrRobustness, ZeroedOffsetTableIsRefused)
 {
     const std::string file = valid_file("table.exr");
     std::string bytes = bytes_of(file);
-    // The last attribute write_exr stores is screenWindowWidth (name, "float",
-    // size 4, value); the header's null byte follows, then the table. One ZIP
-    // chunk holds 16 lines, so 12 lines are one 8-byte entry.
-    const std::size_t attribute = bytes.find(std::string("screenWindowWidth\0float\0", 24));
-    ASSERT_NE(attribute, std::string::npos);
-    const std::size_t table = attribute + 24 + 4 + 4 + 1;
-    ASSERT_LT(table + 8, bytes.size());
-    std::memset(bytes.data() + table, 0, 8);
+    // The table follows the header's null byte. One ZIP chunk holds 16
+    // lines, so 12 lines are one 8-byte entry.
+    overwrite(bytes, header_end(bytes) + 1, std::uint64_t(0));
     put_bytes(file, bytes);
     expect_refused(file, "table.exr");
 }

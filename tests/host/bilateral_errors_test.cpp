@@ -14,13 +14,14 @@
 #include <sstream>
 #include <string>
 
-#include "bilateral_reference.h"
+#include "support/bilateral_reference.h"
 #include "penumbra/bilateral.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
 #include "support/backends.h"
 
 #include "support/cli.h"
+#include "support/errors.h"
 
 namespace penumbra {
 namespace {
@@ -30,18 +31,12 @@ using testing::backend_test_name;
 
 class BilateralErrorTest : public ::testing::TestWithParam<std::string> {};
 
-// Runs `call`, expecting penumbra::Error of `category` whose message holds `needle`.
+// Runs `call`, expecting penumbra::Error of `category` from cross_bilateral
+// whose message holds `needle`.
 template <class Call>
 void expect_error(Call&& call, ErrorCategory category, const std::string& needle)
 {
-    try {
-        call();
-        ADD_FAILURE() << "no error; expected one mentioning '" << needle << "'";
-    } catch (const Error& e) {
-        EXPECT_EQ(e.category(), category) << e.what();
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-        EXPECT_EQ(e.operation(), "cross_bilateral");
-    }
+    testing::expect_error(call, category, "cross_bilateral", needle);
 }
 
 PN_BACKEND_TEST(BilateralErrorTest, RejectsBadImages)

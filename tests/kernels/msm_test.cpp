@@ -2,7 +2,8 @@
 // (tests/support/moment_reference.h, itself checked against a linear program),
 // on the windows where it is known to fail (one depth, two depths, depths 0
 // and 1, receivers at a blocker's depth, the 16-bit limits, windows up to the
-// whole map), the overlap case against VSM, and against the scalar backend.
+// whole map) and the overlap case against VSM (every backend against the
+// scalar one: kernels/moments_cross_backend_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,39 +18,20 @@
 #include "support/backends.h"
 #include "support/maps.h"
 #include "support/moment_reference.h"
+#include "support/msm_windows.h"
+#include "support/visibility.h"
 
 namespace penumbra {
 namespace {
 
+using testing::expect_visibility;
 using testing::Atom;
 using testing::backend_names;
 using testing::backend_test_name;
 using testing::Moments4;
-
-void expect_visibility(const Image& out, const std::string& where)
-{
-    for (int y = 0; y < out.height(); ++y)
-        for (int x = 0; x < out.width(); ++x) {
-            const float v = out.at(0, x, y);
-            ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f) << where << ": " << v << " at " << x << "," << y;
-        }
-}
-
-// The depths of VSM's box window around texel (x, y), one atom each.
-std::vector<Atom> window_atoms(const Image& depth, int x, int y, int radius)
-{
-    std::vector<Atom> atoms;
-    const int w = depth.width(), h = depth.height();
-    for (int j = std::max(y - radius, 0); j < std::min(y + radius + 1, h); ++j)
-        for (int i = std::max(x - radius, 0); i < std::min(x + radius + 1, w); ++i)
-            atoms.push_back({double(depth.at(0, i, j)), 1.0});
-    return atoms;
-}
-
-MsmTable table_for(Context& ctx, const Image& depth, Quantization q)
-{
-    return build_msm_table(ctx, depth, q, q == Quantization::Bits32 ? Precision::Float : Precision::Exact);
-}
+using testing::msm_excess;
+using testing::msm_table_for;
+using testing::window_atoms;
 
 // ---- the reference itself -----------------------------------------------------
 
@@ -90,34 +72,9 @@ TEST(MsmReference, IsTheSharpestBoundByLinearProgramming)
 
 // ---- against the reference, every backend --------------------------------------
 
-// What the kernel may answer for a window of known depths: at least the
-// sharpest bound its (biased) moments allow, and at most the truth, the
-// share of the biased window in front of z (the two coincide where the
-// moments determine the window: one or two depths, which the kernel answers
-// exactly). Both jump where z crosses a depth, and float moments place the
-// depths only to within a depth uncertainty: [bound(z - delta), truth(z +
-// delta)], and the excess is how far the kernel lies outside it.
-double truth(const std::vector<Atom>& atoms, double alpha, double z)
-{
-    double in_front = 0.0, total = 0.0;
-    for (const Atom& a : atoms) {
-        total += a.w;
-        in_front += a.x < z ? a.w : 0.0;
-    }
-    return (1.0 - alpha) * in_front / total + 0.5 * alpha * ((z > 0.0) + (z > 1.0));
-}
-
-double excess(const std::vector<Atom>& atoms, double alpha, double z, double got, double delta)
-{
-    const Moments4 b = testing::biased(testing::moments_of(atoms), alpha);
-    const double lo = testing::msm_bound(b, z - delta).intensity;
-    const double hi = std::max(truth(atoms, alpha, z + delta), testing::msm_bound(b, z + delta).intensity);
-    return std::max({lo - got, got - hi, 0.0});
-}
-
 class MsmTest : public ::testing::TestWithParam<std::string> {};
 
-// Random windows of 1 to 5 depths (multiples of 1/16, so that float sums of
+// Random windows (testing::few_depth_window) of 1 to 5 depths (multiples of 1/16, so that float sums of
 // z^k stay exact and distinct depths are far apart), receivers anywhere and
 // near texel depths, radii 0 to 4, both storages, two moment biases.
 // Reference: the exact bound of the window's true (unquantized) moments,
@@ -130,27 +87,17 @@ PN_BACKEND_TEST(MsmTest, WithinTheExactBoundUpToDepthUncertainty)
     for (Quantization q : {Quantization::None, Quantization::Bits32})
         for (float alpha : {6e-5f, 1e-3f}) {
             std::mt19937 rng(7);
-            std::uniform_real_distribution<float> unit(0.0f, 1.0f), near(-0.05f, 0.05f);
             const double delta = q == Quantization::Bits16 ? 1e-2 : 1e-3;
             double worst = 0.0;
             for (int trial = 0; trial < 80; ++trial) {
-                const int w = 9, h = 7, levels = 1 + int(rng() % 5);
-                float level[5];
-                for (float& l : level) l = std::floor(unit(rng) * 16.0f) / 16.0f;
-                Image depth(w, h, 1);
-                for (int y = 0; y < h; ++y)
-                    for (int x = 0; x < w; ++x) depth.at(0, x, y) = level[rng() % levels];
-                Image rx = testing::receivers_on_texels(w, h, w, h, 0.0f, 1.0f, 11u * trial);
-                for (int y = 0; y < h; ++y)
-                    for (int x = 0; x < w; ++x)
-                        if (rng() % 2) rx.at(2, x, y) = level[rng() % levels] + near(rng);
-                const int radius = int(rng() % 5);
-                const Image out = msm(ctx, table_for(ctx, depth, q), rx, MsmOptions{radius, alpha, 0.0f});
+                const testing::FewDepthWindow c = testing::few_depth_window(rng, trial);
+                const Image& rx = c.receivers;
+                const Image out = msm(ctx, msm_table_for(ctx, c.depth, q), rx, MsmOptions{c.radius, alpha, 0.0f});
                 expect_visibility(out, backend);
-                for (int y = 0; y < h; ++y)
-                    for (int x = 0; x < w; ++x) {
-                        const std::vector<Atom> atoms = window_atoms(depth, x, y, radius);
-                        const double e = excess(atoms, alpha, rx.at(2, x, y), 1.0 - out.at(0, x, y), delta);
+                for (int y = 0; y < rx.height(); ++y)
+                    for (int x = 0; x < rx.width(); ++x) {
+                        const std::vector<Atom> atoms = window_atoms(c.depth, x, y, c.radius);
+                        const double e = msm_excess(atoms, alpha, rx.at(2, x, y), 1.0 - out.at(0, x, y), delta);
                         worst = std::max(worst, e);
                         ASSERT_LE(e, 0.01)
                             << backend << " " << to_string(q) << " storage, alpha " << alpha << " trial " << trial
@@ -281,7 +228,7 @@ PN_BACKEND_TEST(MsmTest, EverySixteenBitDepthAsAOneDepthWindow)
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     Image depth(256, 256, 1);
     for (int i = 0; i < 65536; ++i) depth.at(0, i % 256, i / 256) = float(i) / 65535.0f;
-    const MsmTable table = table_for(ctx, depth, Quantization::None);
+    const MsmTable table = msm_table_for(ctx, depth, Quantization::None);
     const float alpha = kMsmMomentBiasExact, step = 1.0f / 65535.0f;
     struct Case {
         float shift;   // receiver depth - texel depth
@@ -325,7 +272,7 @@ PN_BACKEND_TEST(MsmTest, ConstantMapsAnyWindow)
         for (float level : {0.0f, 0.0625f, 0.5f, 0.9375f, 1.0f}) {
             Image depth(37, 23, 1);
             depth.fill(0, level);
-            const MsmTable table = table_for(ctx, depth, q);
+            const MsmTable table = msm_table_for(ctx, depth, q);
             const float alpha = default_moment_bias(q);
             for (int radius : {0, 3, 40, 127})
                 for (float shift : {-0.2f, -0.001f, 0.001f, 0.2f}) {
@@ -360,7 +307,7 @@ PN_BACKEND_TEST(MsmTest, DepthsZeroAndOneOnly)
     for (int y = 0; y < 11; ++y)
         for (int x = 0; x < 23; ++x) depth.at(0, x, y) = float(rng() % 3 == 0);
     for (Quantization q : {Quantization::None, Quantization::Bits32}) {
-        const MsmTable table = table_for(ctx, depth, q);
+        const MsmTable table = msm_table_for(ctx, depth, q);
         const float alpha = default_moment_bias(q);
         for (int radius : {0, 1, 4, 127})
             for (float z : {0.0f, 0.3f, 0.5f, 0.99f, 1.0f}) {
@@ -392,7 +339,7 @@ PN_BACKEND_TEST(MsmTest, TwoDepthsAndAReceiverAtTheBlocker)
         Image depth(16, 16, 1);
         for (int y = 0; y < 16; ++y)
             for (int x = 0; x < 16; ++x) depth.at(0, x, y) = x < 6 ? 0.25f : 0.75f;  // 6 / 16 blockers
-        const MsmTable table = table_for(ctx, depth, q);
+        const MsmTable table = msm_table_for(ctx, depth, q);
         const float alpha = default_moment_bias(q);
         const Moments4 b = testing::biased(testing::moments_of({{0.25, 6}, {0.75, 10}}), alpha);
         // Whole-map windows: 37.5% at 0.25, 62.5% at 0.75.
@@ -440,7 +387,7 @@ PN_BACKEND_TEST(MsmTest, NeverNaNOnAnything)
             for (int y = 0; y < h; ++y)
                 for (int x = 0; x < w; ++x) rx.at(2, x, y) = rng() % 3 ? depth.at(0, x, y) : wide(rng);
             for (Quantization q : {Quantization::None, Quantization::Bits16, Quantization::Bits32}) {
-                const MsmTable table = table_for(ctx, depth, q);
+                const MsmTable table = msm_table_for(ctx, depth, q);
                 for (int radius : {0, 5})
                     for (float alpha : {0.0f, 6e-5f, 0.5f})
                         expect_visibility(msm(ctx, table, rx, MsmOptions{radius, alpha, 0.0f}),
@@ -502,46 +449,6 @@ TEST(MsmBias, SixteenBitDefaultCoversTheWorstOneDepthWindow)
     std::printf("[ msm bias ] 16-bit one-depth windows: worst |variance| %.3g, alpha needed %.2g, default %.2g\n",
                 worst_variance, needed, double(kMsmMomentBias16));
     EXPECT_LT(needed, kMsmMomentBias16 / 2.0);
-}
-
-// Measurement, not a check (docs/moments.md, "Biases"): the worst excess
-// over [bound, truth] of the random few-depth windows above, per moment bias,
-// storage and depth uncertainty.
-//   penumbra_tests --gtest_also_run_disabled_tests --gtest_filter='*MsmBiasFigures*'
-TEST(MsmBiasFigures, DISABLED_ExcessOverAlpha)
-{
-    Context ctx(ContextOptions{Backend::Scalar, {}});
-    std::printf("%-8s %-6s %12s %12s %12s\n", "alpha", "bits", "delta 1e-4", "delta 1e-3", "delta 1e-2");
-    for (float alpha : {3e-7f, 3e-6f, 1e-5f, 3e-5f, 6e-5f, 1e-4f, 1e-3f})
-        for (Quantization q : {Quantization::Bits16, Quantization::Bits32}) {
-            std::mt19937 rng(7);
-            std::uniform_real_distribution<float> unit(0.0f, 1.0f), near(-0.05f, 0.05f);
-            double worst[3] = {0, 0, 0};
-            for (int trial = 0; trial < 300; ++trial) {
-                const int w = 9, h = 7, levels = 1 + int(rng() % 5);
-                float level[5];
-                for (float& l : level) l = std::floor(unit(rng) * 16.0f) / 16.0f;
-                Image depth(w, h, 1);
-                for (int y = 0; y < h; ++y)
-                    for (int x = 0; x < w; ++x) depth.at(0, x, y) = level[rng() % levels];
-                Image rx = testing::receivers_on_texels(w, h, w, h, 0.0f, 1.0f, 11u * trial);
-                for (int y = 0; y < h; ++y)
-                    for (int x = 0; x < w; ++x)
-                        if (rng() % 2) rx.at(2, x, y) = level[rng() % levels] + near(rng);
-                const int radius = int(rng() % 5);
-                const Image out = msm(ctx, table_for(ctx, depth, q), rx, MsmOptions{radius, alpha, 0.0f});
-                for (int y = 0; y < h; ++y)
-                    for (int x = 0; x < w; ++x) {
-                        const std::vector<Atom> atoms = window_atoms(depth, x, y, radius);
-                        const double deltas[3] = {1e-4, 1e-3, 1e-2};
-                        for (int k = 0; k < 3; ++k)
-                            worst[k] = std::max(worst[k], excess(atoms, alpha, rx.at(2, x, y),
-                                                                 1.0 - out.at(0, x, y), deltas[k]));
-                    }
-            }
-            std::printf("%-8.1e %-6s %12.4f %12.4f %12.4f\n", alpha, to_string(q).c_str(), worst[0], worst[1],
-                        worst[2]);
-        }
 }
 
 }  // namespace
