@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "backend.h"
+#include "host/backend/backend.h"
 #include "cl/opencl_runtime.h"
 
 namespace penumbra::cl_backend {

@@ -70,9 +70,10 @@ PN_FN pn_float chebyshev_visibility(DepthMoments m, pn_float z, float min_varian
     return pn_double_to_float(pn_dclamp((p - lo) / (1.0 - lo), 0.0, 1.0));
 }
 
-/* Mean and mean square over the texels [x0, x1) x [y0, y1). */
-PN_FN DepthMoments box_moments_float(PN_GLOBAL const float* table, pn_dims t, pn_int x0, pn_int x1, pn_int y0,
-                                     pn_int y1)
+/* Mean and mean square over the texels [x0, x1) x [y0, y1). `limbs` is the
+ * exact variant's (one argument list for both, PN_TABLE_VARIANTS); unused. */
+PN_FN DepthMoments box_moments_float(PN_GLOBAL const float* table, pn_dims t, int limbs, pn_int x0, pn_int x1,
+                                     pn_int y0, pn_int y1)
 {
     const pn_float area = pn_int_to_float((x1 - x0) * (y1 - y0));
     DepthMoments m;
@@ -114,7 +115,8 @@ PN_FN pn_double fractional_area(FractionalWindow f)
     return (pn_to_double(f.x1) - pn_to_double(f.x0)) * (pn_to_double(f.y1) - pn_to_double(f.y0));
 }
 
-PN_FN DepthMoments fractional_moments_float(PN_GLOBAL const float* table, pn_dims t, FractionalWindow f)
+/* `limbs`: as box_moments_float's, unused. */
+PN_FN DepthMoments fractional_moments_float(PN_GLOBAL const float* table, pn_dims t, int limbs, FractionalWindow f)
 {
     const SatFractionalWindow w = sat_fractional_window(t, f.x0, f.x1, f.y0, f.y1);
     const pn_float area = (f.x1 - f.x0) * (f.y1 - f.y0);

@@ -6,7 +6,7 @@
  * simd/dialect_simd.h (xsimd, one pixel per lane, compiled once per ISA) and
  * simd/dialect_scalar.h (plain C++, one lane: the readable oracle). A
  * description never names a lane count, an ISA, xsimd or OpenCL; tests grep
- * for it (DialectPurity in tests/registry_test.cpp).
+ * for it (DialectPurity in tests/kernel_table_test.cpp).
  *
  * Types
  *   pn_float, pn_int, pn_uint   per-pixel (per-lane) float, int32, uint32
@@ -110,6 +110,15 @@
  */
 #ifndef PENUMBRA_DIALECT_H
 #define PENUMBRA_DIALECT_H
+
+/* The element types of a moment table: float sums, or exact uint limbs
+ * (kernels/moment_table.h). An entry that differs only in the table's type is
+ * written once, as a macro M(variant, T) defining PN_KERNEL void
+ * NAME_##variant(... PN_GLOBAL const T* table ...), calling helpers named
+ * HELPER_##variant that take one argument list in both variants; then
+ * PN_TABLE_VARIANTS(M) instantiates NAME_float and NAME_exact, the two entries
+ * of kernels/kernel_table.h. */
+#define PN_TABLE_VARIANTS(M) M(float, float) M(exact, uint)
 
 /* Linear step: 0 at or below lo, 1 at or above hi, linear between. Used for
  * light-bleeding reduction (Lauritzen, GPU Gems 3 ch. 8). Requires lo < hi. */

@@ -92,25 +92,17 @@ PN_FN void encoded_band_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* tabl
 
 /* Pass 1: band `pn_task` becomes a table of its own. Lanes past the width
  * add encoded zeros to the row sums, but only after the row's last pixel. */
-PN_KERNEL void encoded_bands_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table, PN_GLOBAL float* columns,
-                                   PN_GLOBAL int* bad_rows, const EncodedSatParams p, PN_TASK_ARGS)
-{
-    const int bands = (p.depth.height + p.band_height - 1) / p.band_height;
-    PN_TASK_BEGIN(bands);
-    const int y0 = pn_task * p.band_height;
-    const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;
-    encoded_band_float(depth, table, columns, bad_rows, p, pn_task, y0, y1);
+#define PN_ENCODED_BANDS_KERNEL(variant, T)                                                                    \
+PN_KERNEL void encoded_bands_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T* table, PN_GLOBAL T* columns, \
+                                       PN_GLOBAL int* bad_rows, const EncodedSatParams p, PN_TASK_ARGS)        \
+{                                                                                                              \
+    const int bands = (p.depth.height + p.band_height - 1) / p.band_height;                                    \
+    PN_TASK_BEGIN(bands);                                                                                      \
+    const int y0 = pn_task * p.band_height;                                                                    \
+    const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;                  \
+    encoded_band_##variant(depth, table, columns, bad_rows, p, pn_task, y0, y1);                               \
 }
-
-PN_KERNEL void encoded_bands_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table, PN_GLOBAL uint* columns,
-                                   PN_GLOBAL int* bad_rows, const EncodedSatParams p, PN_TASK_ARGS)
-{
-    const int bands = (p.depth.height + p.band_height - 1) / p.band_height;
-    PN_TASK_BEGIN(bands);
-    const int y0 = pn_task * p.band_height;
-    const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;
-    encoded_band_exact(depth, table, columns, bad_rows, p, pn_task, y0, y1);
-}
+PN_TABLE_VARIANTS(PN_ENCODED_BANDS_KERNEL)
 
 /* ---- window means ----------------------------------------------------- */
 

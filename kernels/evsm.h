@@ -50,31 +50,33 @@ PN_FN pn_float evsm_visibility(const pn_double* mean, pn_float receiver_z, const
     return visibility;
 }
 
-PN_KERNEL void evsm_float(PN_GLOBAL const float* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
-                          PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)
+/* The window means of the table's channels: a float table, or (exact) a
+ * limb table of the warps (kernels/moment_table.h, PN_TABLE_EVSM) or the
+ * 16-bit steps of an encoded table (one limb). */
+PN_FN void evsm_box_means_float(PN_GLOBAL const float* table, const MomentParams p, TexelWindow w, pn_double* mean)
 {
-    PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
-    const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);
     const pn_float area = texel_window_area(w);
-    pn_double mean[4];
     for (int k = 0; k < p.channels; ++k) mean[k] = encoded_box_mean_float(table, p.table, k, w, area);
-    pn_store(out, p.out, pn_x, pn_y, evsm_visibility(mean, r.z, p));
 }
 
-/* Exact: a limb table of the warps (kernels/moment_table.h, PN_TABLE_EVSM), or
- * the 16-bit steps of an encoded table (one limb). */
-PN_KERNEL void evsm_exact(PN_GLOBAL const uint* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
-                          PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)
+PN_FN void evsm_box_means_exact(PN_GLOBAL const uint* table, const MomentParams p, TexelWindow w, pn_double* mean)
 {
-    PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
-    const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);
     const pn_double area = pn_int_to_double((w.x1 - w.x0) * (w.y1 - w.y0));
-    pn_double mean[4];
     for (int k = 0; k < p.channels; ++k)
         mean[k] = sat_limb_box_sum(table, p.table, p.limbs, k, sat_limb_unit(p.limbs), w.x0, w.x1, w.y0, w.y1) / area;
-    pn_store(out, p.out, pn_x, pn_y, evsm_visibility(mean, r.z, p));
 }
+
+#define PN_EVSM_KERNEL(variant, T)                                                                              \
+PN_KERNEL void evsm_##variant(PN_GLOBAL const T* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out, \
+                              PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)                     \
+{                                                                                                               \
+    PN_PIXEL_BEGIN(p.out.width, p.out.height);                                                                  \
+    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);                     \
+    const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);                                            \
+    pn_double mean[4];                                                                                          \
+    evsm_box_means_##variant(table, p, w, mean);                                                                \
+    pn_store(out, p.out, pn_x, pn_y, evsm_visibility(mean, r.z, p));                                            \
+}
+PN_TABLE_VARIANTS(PN_EVSM_KERNEL)
 
 #endif

@@ -191,74 +191,71 @@ PN_FN void sat_block_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
 
 /* Banded schedule, pass 1: band `pn_task` of `band_height` rows becomes a
  * table of its own (zero carries, zero columns in row `pn_task` of `columns`). */
-PN_KERNEL void sat_bands_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table, PN_GLOBAL float* carry,
-                               PN_GLOBAL float* columns, PN_GLOBAL int* bad_rows, const SatParams p, PN_TASK_ARGS)
-{
-    const int bands = (p.depth.height + p.band_height - 1) / p.band_height;
-    PN_TASK_BEGIN(bands);
-    const int y0 = pn_task * p.band_height;
-    const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;
-    sat_block_float(depth, table, carry, columns, pn_task, bad_rows, p, 0, p.depth.width, y0, y1);
+#define PN_SAT_BANDS_KERNEL(variant, T)                                                                            \
+PN_KERNEL void sat_bands_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T* table, PN_GLOBAL T* carry,           \
+                                   PN_GLOBAL T* columns, PN_GLOBAL int* bad_rows, const SatParams p, PN_TASK_ARGS) \
+{                                                                                                                  \
+    const int bands = (p.depth.height + p.band_height - 1) / p.band_height;                                        \
+    PN_TASK_BEGIN(bands);                                                                                          \
+    const int y0 = pn_task * p.band_height;                                                                        \
+    const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;                      \
+    sat_block_##variant(depth, table, carry, columns, pn_task, bad_rows, p, 0, p.depth.width, y0, y1);             \
 }
-
-PN_KERNEL void sat_bands_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table, PN_GLOBAL uint* carry,
-                               PN_GLOBAL uint* columns, PN_GLOBAL int* bad_rows, const SatParams p, PN_TASK_ARGS)
-{
-    const int bands = (p.depth.height + p.band_height - 1) / p.band_height;
-    PN_TASK_BEGIN(bands);
-    const int y0 = pn_task * p.band_height;
-    const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;
-    sat_block_exact(depth, table, carry, columns, pn_task, bad_rows, p, 0, p.depth.width, y0, y1);
-}
+PN_TABLE_VARIANTS(PN_SAT_BANDS_KERNEL)
 
 /* Banded schedule, pass 2, per pixel: adds the column totals of every band
- * above this pixel's band (an exclusive sum over `columns` rows). */
-PN_KERNEL void sat_join_bands_float(PN_GLOBAL float* table, PN_GLOBAL const float* columns,
-                                    const SatParams p, PN_PIXEL_ARGS)
+ * above this pixel's band (an exclusive sum over `columns` rows), band > 0,
+ * to the strip at (x, y + 1) of every plane. */
+PN_FN void sat_join_add_float(PN_GLOBAL float* table, PN_GLOBAL const float* columns, const SatParams p, int x, int y,
+                              int band)
 {
-    PN_PIXEL_BEGIN(p.depth.width, p.depth.height);
-    const int band = pn_y / p.band_height;
-    if (band == 0) return;
     for (int k = 0; k < p.moments * p.limbs; ++k) {
         PN_GLOBAL const float* column = PN_PLANE(columns, p.columns, k);
         pn_float above = 0.0f;
-        for (int b = 0; b < band; ++b) above = above + pn_load(column, p.columns, pn_x, b);
+        for (int b = 0; b < band; ++b) above = above + pn_load(column, p.columns, x, b);
         PN_GLOBAL float* plane = PN_PLANE(table, p.table, k);
-        pn_store(plane, p.table, pn_x, pn_y + 1, pn_load(plane, p.table, pn_x, pn_y + 1) + above);
+        pn_store(plane, p.table, x, y + 1, pn_load(plane, p.table, x, y + 1) + above);
     }
 }
 
-PN_KERNEL void sat_join_bands_exact(PN_GLOBAL uint* table, PN_GLOBAL const uint* columns,
-                                    const SatParams p, PN_PIXEL_ARGS)
+/* The same on an exact table, each moment's limbs as laid out at the top of this file. */
+PN_FN void sat_join_add_exact(PN_GLOBAL uint* table, PN_GLOBAL const uint* columns, const SatParams p, int x, int y,
+                              int band)
 {
-    PN_PIXEL_BEGIN(p.depth.width, p.depth.height);
-    const int band = pn_y / p.band_height;
-    if (band == 0) return;
     pn_uint above[PN_MAX_PLANES];
     for (int k = 0; k < p.moments * p.limbs; ++k) {
         PN_GLOBAL const uint* column = PN_PLANE(columns, p.columns, k);
         above[k] = 0u;
-        for (int b = 0; b < band; ++b) above[k] = above[k] + pn_uload(column, p.columns, pn_x, b);
+        for (int b = 0; b < band; ++b) above[k] = above[k] + pn_uload(column, p.columns, x, b);
     }
     for (int k = 0; k < p.moments; ++k) {
         if (p.limbs == 1) {
             PN_GLOBAL uint* plane = PN_PLANE(table, p.table, k);
-            pn_ustore(plane, p.table, pn_x, pn_y + 1, pn_uload(plane, p.table, pn_x, pn_y + 1) + above[k]);
+            pn_ustore(plane, p.table, x, y + 1, pn_uload(plane, p.table, x, y + 1) + above[k]);
             continue;
         }
         /* The limb tables' layout (top of this file): a pair plane, then limb 2. */
         PN_GLOBAL uint* pair = PN_PLANE(table, p.table, k * p.limbs);
         pn_uint first, second;
-        pn_uload_pair(pair, p.table, pn_x, pn_y + 1, &first, &second);
-        pn_ustore_pair_stream(pair, p.table, pn_x, pn_y + 1, first + above[k * p.limbs],
-                              second + above[k * p.limbs + 1]);
+        pn_uload_pair(pair, p.table, x, y + 1, &first, &second);
+        pn_ustore_pair_stream(pair, p.table, x, y + 1, first + above[k * p.limbs], second + above[k * p.limbs + 1]);
         if (p.limbs == 3) {
             PN_GLOBAL uint* plane = PN_PLANE(table, p.table, k * p.limbs + 2);
-            pn_ustore(plane, p.table, pn_x, pn_y + 1,
-                      pn_uload(plane, p.table, pn_x, pn_y + 1) + above[k * p.limbs + 2]);
+            pn_ustore(plane, p.table, x, y + 1, pn_uload(plane, p.table, x, y + 1) + above[k * p.limbs + 2]);
         }
     }
 }
+
+#define PN_SAT_JOIN_BANDS_KERNEL(variant, T)                                                               \
+PN_KERNEL void sat_join_bands_##variant(PN_GLOBAL T* table, PN_GLOBAL const T* columns, const SatParams p, \
+                                        PN_PIXEL_ARGS)                                                     \
+{                                                                                                          \
+    PN_PIXEL_BEGIN(p.depth.width, p.depth.height);                                                         \
+    const int band = pn_y / p.band_height;                                                                 \
+    if (band == 0) return;                                                                                 \
+    sat_join_add_##variant(table, columns, p, pn_x, pn_y, band);                                           \
+}
+PN_TABLE_VARIANTS(PN_SAT_JOIN_BANDS_KERNEL)
 
 /* ---- queries ----------------------------------------------------------- */
 

@@ -326,39 +326,38 @@ PN_FN FourMoments msm_moments_from_means(const pn_double* mean, int storage)
     return m;
 }
 
+/* The four window means of a float table, and the precision their rounding
+ * allows. */
+PN_FN MsmPrecision msm_box_means_float(PN_GLOBAL const float* table, const MomentParams p, TexelWindow w,
+                                       pn_double* mean)
+{
+    const pn_float area = texel_window_area(w);
+    for (int k = 0; k < 4; ++k) mean[k] = encoded_box_mean_float(table, p.table, k, w, area);
+    return msm_float_precision(pn_int_to_double(w.x1), pn_int_to_double(w.y1), pn_to_double(area), p);
+}
+
 /* The four window means of an exact table: a limb table of z..z^4
  * (PN_MOMENTS_POWER) or sums of 16-bit steps of the optimized moments. */
-PN_FN void msm_box_means_exact(PN_GLOBAL const uint* table, const MomentParams p, TexelWindow w, pn_double* mean)
+PN_FN MsmPrecision msm_box_means_exact(PN_GLOBAL const uint* table, const MomentParams p, TexelWindow w,
+                                       pn_double* mean)
 {
     const pn_double area = pn_int_to_double((w.x1 - w.x0) * (w.y1 - w.y0));
     const double unit = sat_limb_unit(p.limbs);
     for (int k = 0; k < 4; ++k) mean[k] = sat_limb_box_sum(table, p.table, p.limbs, k, unit, w.x0, w.x1, w.y0, w.y1) / area;
+    return msm_exact_precision(p);
 }
 
-PN_KERNEL void msm_float(PN_GLOBAL const float* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
-                         PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)
-{
-    PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
-    const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);
-    const pn_float area = texel_window_area(w);
-    pn_double mean[4];
-    for (int k = 0; k < 4; ++k) mean[k] = encoded_box_mean_float(table, p.table, k, w, area);
-    const MsmPrecision precision =
-        msm_float_precision(pn_int_to_double(w.x1), pn_int_to_double(w.y1), pn_to_double(area), p);
-    pn_store(out, p.out, pn_x, pn_y, msm_visibility(msm_moments_from_means(mean, p.storage), r.z, precision, p));
+#define PN_MSM_KERNEL(variant, T)                                                                                 \
+PN_KERNEL void msm_##variant(PN_GLOBAL const T* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,    \
+                             PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)                        \
+{                                                                                                                 \
+    PN_PIXEL_BEGIN(p.out.width, p.out.height);                                                                    \
+    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);                       \
+    const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);                                              \
+    pn_double mean[4];                                                                                            \
+    const MsmPrecision precision = msm_box_means_##variant(table, p, w, mean);                                    \
+    pn_store(out, p.out, pn_x, pn_y, msm_visibility(msm_moments_from_means(mean, p.storage), r.z, precision, p)); \
 }
-
-PN_KERNEL void msm_exact(PN_GLOBAL const uint* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
-                         PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)
-{
-    PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);
-    const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);
-    pn_double mean[4];
-    msm_box_means_exact(table, p, w, mean);
-    const FourMoments m = msm_moments_from_means(mean, p.storage);
-    pn_store(out, p.out, pn_x, pn_y, msm_visibility(m, r.z, msm_exact_precision(p), p));
-}
+PN_TABLE_VARIANTS(PN_MSM_KERNEL)
 
 #endif

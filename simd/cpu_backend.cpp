@@ -6,8 +6,8 @@ namespace penumbra::cpu {
 
 std::string CpuBackend::description() const
 {
-    if (std::string(k_.isa) == "scalar") return "scalar (1 lane)";
-    return "simd (" + std::string(k_.isa) + ", " + std::to_string(k_.lanes) + " lanes)";
+    if (std::string(kernels_.isa) == "scalar") return "scalar (1 lane)";
+    return "simd (" + std::string(kernels_.isa) + ", " + std::to_string(kernels_.lanes) + " lanes)";
 }
 
 std::unique_ptr<detail::BackendImpl> make_cpu_backend(const CpuKernels& kernels)

@@ -5,17 +5,17 @@
 
 #include <memory>
 
-#include "backend.h"
+#include "host/backend/backend.h"
 #include "simd/cpu_kernels.h"
 
 namespace penumbra::cpu {
 
 class CpuBackend final : public detail::BackendImpl {
 public:
-    explicit CpuBackend(const CpuKernels& kernels) : k_(kernels) {}
+    explicit CpuBackend(const CpuKernels& kernels) : kernels_(kernels) {}
 
     std::string description() const override;
-    std::string isa() const override { return k_.isa; }
+    std::string isa() const override { return kernels_.isa; }
 
     // simd/cpu_moment_table.cpp
     void build_moment_table(const Image& depth, MomentTable& table, int* bad_rows) override;
@@ -38,7 +38,7 @@ public:
                        const MomentParams& params, Image& out, int* bad_rows) override;
 
 private:
-    const CpuKernels& k_;
+    const CpuKernels& kernels_;
 };
 
 std::unique_ptr<detail::BackendImpl> make_cpu_backend(const CpuKernels& kernels);

@@ -1,8 +1,11 @@
 // The kernel descriptions compiled for one instruction set.
 //
-// CMake compiles this file once per ISA (cmake/penumbra_kernels.cmake) with
-// PN_ISA_<name> defined and that ISA's -m flags; each copy puts the
-// descriptions in its own namespace and exports one CpuKernels table.
+// CMake compiles this file once per ISA of simd/isa_list.h
+// (cmake/penumbra_kernels.cmake) with that ISA's flags and its generated
+// penumbra_this_isa.h; each copy puts the descriptions in its own namespace
+// and exports one CpuKernels table, its entries filled from the kernel table:
+// an entry of kernels/kernel_table.h that no description defines does not
+// compile.
 #include <immintrin.h>
 
 #include <atomic>
@@ -14,32 +17,11 @@
 #include <type_traits>
 
 #include "kernels/params.h"
+#include "penumbra_this_isa.h"  // PN_ISA_<id>, PN_ISA_NAMESPACE, PN_ISA_LABEL, PN_TABLE_NAME, PN_ARCH
 #include "simd/cpu_kernels.h"
 
-#if defined(PN_ISA_scalar)
-#define PN_ISA_NAMESPACE scalar
-#define PN_ISA_LABEL "scalar"
-#define PN_TABLE_NAME kernels_scalar
-#else
+#if !defined(PN_ISA_scalar)
 #include <xsimd/xsimd.hpp>
-#if defined(PN_ISA_sse4_2)
-#define PN_ARCH xsimd::sse4_2
-#define PN_ISA_NAMESPACE sse4_2
-#define PN_ISA_LABEL "sse4.2"
-#define PN_TABLE_NAME kernels_sse4_2
-#elif defined(PN_ISA_avx2)
-#define PN_ARCH xsimd::fma3<xsimd::avx2>
-#define PN_ISA_NAMESPACE avx2
-#define PN_ISA_LABEL "avx2"
-#define PN_TABLE_NAME kernels_avx2
-#elif defined(PN_ISA_avx512)
-#define PN_ARCH xsimd::avx512bw
-#define PN_ISA_NAMESPACE avx512
-#define PN_ISA_LABEL "avx512"
-#define PN_TABLE_NAME kernels_avx512
-#else
-#error "define one of PN_ISA_scalar, PN_ISA_sse4_2, PN_ISA_avx2, PN_ISA_avx512"
-#endif
 #endif
 
 namespace penumbra::cpu::PN_ISA_NAMESPACE {
@@ -110,41 +92,21 @@ static void dialect_gather_pair_probe(const u32* table, const int* index, u32* f
 namespace penumbra::cpu {
 namespace isa = PN_ISA_NAMESPACE;
 
-// Filled by name, not by position, so that each kernel family adds its own
-// lines without caring about the others' order.
 static constexpr CpuKernels make_table()
 {
     CpuKernels t{};
     t.isa = PN_ISA_LABEL;
     t.lanes = isa::kLanes;
+#define PN_CPU_SET_ENTRY(family, name, shape, Params, buffers) t.name = &isa::name;
+    PN_KERNEL_TABLE(PN_CPU_SET_ENTRY)
+#undef PN_CPU_SET_ENTRY
     t.sat_block_float = &isa::sat_block_float_fenced;
     t.sat_block_exact = &isa::sat_block_exact_fenced;
-    t.dialect_double_probe = &isa::dialect_double_probe;
-    t.dialect_gather_pair_probe = &isa::dialect_gather_pair_probe;
-    t.sat_bands_float = &isa::sat_bands_float;
-    t.sat_bands_exact = &isa::sat_bands_exact;
-    t.sat_join_bands_float = &isa::sat_join_bands_float;
-    t.sat_join_bands_exact = &isa::sat_join_bands_exact;
-    t.vsm_float = &isa::vsm_float;
-    t.vsm_exact = &isa::vsm_exact;
-    t.vssm_float = &isa::vssm_float;
-    t.vssm_exact = &isa::vssm_exact;
-    t.bilateral_full = &isa::bilateral_full;
-    t.bilateral_horizontal = &isa::bilateral_horizontal;
-    t.bilateral_vertical = &isa::bilateral_vertical;
     t.bilateral_full_span = &isa::bilateral_full_span;
     t.bilateral_horizontal_span = &isa::bilateral_horizontal_span;
     t.bilateral_vertical_span = &isa::bilateral_vertical_span;
-    t.sdf_grid = &isa::sdf_grid;
-    t.sdf_analytic = &isa::sdf_analytic;
-    t.encoded_bands_float = &isa::encoded_bands_float;
-    t.encoded_bands_exact = &isa::encoded_bands_exact;
-    t.msm_float = &isa::msm_float;
-    t.msm_exact = &isa::msm_exact;
-    t.msm_soft_float = &isa::msm_soft_float;
-    t.msm_soft_exact = &isa::msm_soft_exact;
-    t.evsm_float = &isa::evsm_float;
-    t.evsm_exact = &isa::evsm_exact;
+    t.dialect_double_probe = &isa::dialect_double_probe;
+    t.dialect_gather_pair_probe = &isa::dialect_gather_pair_probe;
     return t;
 }
 

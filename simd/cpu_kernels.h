@@ -1,33 +1,75 @@
 // The CPU function tables: the kernel descriptions compiled once per ISA
-// (simd/cpu_kernels.cpp), each table holding the same entry points.
+// (simd/cpu_kernels.cpp, the ISAs of simd/isa_list.h), each table holding the
+// same entry points.
 //
-// Entries are the descriptions' own functions. `int*` arguments are per-row
-// flags that kernels raise for input values they cannot take (see
-// pn_flag_any in kernels/dialect.h). Pixel kernels take the strip's
-// first pixel (x, y) last; the schedule (simd/cpu_backend.cpp) walks strips of
-// `lanes` pixels. Task kernels take their task index last.
+// The entry members come from the kernel table (kernels/kernel_table.h):
+// one member per entry, named as the entry, its signature derived from
+// KernelTraits (the buffers, then Params, then the strip's first pixel x, y
+// for a pixel entry or the task index for a task entry). `int*` buffers are
+// per-row flags that kernels raise for input values they cannot take (see
+// pn_flag_any in kernels/dialect.h). The launches (simd/cpu_schedule.h) name an
+// entry by KernelId and reach its member through CpuEntryMember.
 #pragma once
 
 #include <cstdint>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
+#include "host/backend/kernel_id.h"
 #include "kernels/params.h"
+#include "penumbra_cpu_isas.h"  // PN_CPU_ISAS, generated from simd/isa_list.h
 
 namespace penumbra::cpu {
 
 using u32 = std::uint32_t;
+using detail::KernelId;
+using detail::KernelShape;
+
+namespace table_detail {
+template <KernelShape Shape, class Params, class Buffers>
+struct EntrySignature;
+template <class Params, class... Buffers>
+struct EntrySignature<KernelShape::pixel, Params, std::tuple<Buffers...>> {
+    using type = void (*)(Buffers..., Params, int x, int y);
+};
+template <class Params, class... Buffers>
+struct EntrySignature<KernelShape::task, Params, std::tuple<Buffers...>> {
+    using type = void (*)(Buffers..., Params, int task);
+};
+}  // namespace table_detail
+
+// The CPU signature of entry K.
+template <KernelId K>
+using CpuEntry = typename table_detail::EntrySignature<detail::KernelTraits<K>::shape,
+                                                       typename detail::KernelTraits<K>::Params,
+                                                       typename detail::KernelTraits<K>::Buffers>::type;
 
 struct CpuKernels {
     const char* isa;  // as `penumbra info` prints it: scalar, sse4.2, avx2, avx512
     int lanes;        // pixels per strip
 
-    // The wavefront schedule's block (not an entry point of the registry).
+    // The entry points of kernels/kernel_table.h, in its order.
+#define PN_CPU_ENTRY_MEMBER(family, name, shape, Params, buffers) CpuEntry<KernelId::name> name;
+    PN_KERNEL_TABLE(PN_CPU_ENTRY_MEMBER)
+#undef PN_CPU_ENTRY_MEMBER
+
+    // Not entry points: the helpers that only the CPU schedules call, a short
+    // hand list (each set in simd/cpu_kernels.cpp, checked in tests/kernel_table_test.cpp).
+
+    // The wavefront schedule's block of kernels/moment_table.h (simd/cpu_moment_table.cpp).
     void (*sat_block_float)(const float*, float*, float*, float*, int, int*, SatParams, int, int, int, int);
     void (*sat_block_exact)(const float*, u32*, u32*, u32*, int, int*, SatParams, int, int, int, int);
-
-    // The double lanes of the dialect on one strip of `lanes` values (not an
-    // entry point; tests/registry_test.cpp, DialectDouble): for lane i,
+    // The spans of kernels/bilateral.h (simd/cpu_bilateral.cpp): the strips
+    // from x0 to x1 of rows [y0, y1).
+    void (*bilateral_full_span)(const float*, const float*, const float*, const int*, const float*, float*, int*,
+                                BilateralParams, int x0, int x1, int y0, int y1);
+    void (*bilateral_horizontal_span)(const float*, const float*, const float*, const int*, const float*, float*,
+                                      int*, BilateralParams, int x0, int x1, int y0, int y1);
+    void (*bilateral_vertical_span)(const float*, const float*, const float*, const int*, const float*, float*,
+                                    BilateralParams, int x0, int x1, int y0, int y1);
+    // The double lanes of the dialect on one strip of `lanes` values
+    // (tests/kernel_table_test.cpp, DialectDouble): for lane i,
     // d[i] = to_double(f), d[L + i] = uint_to_double(u), d[2L + i] =
     // (to_double(f) * 3 - 1) / 7 in double; g[i] = double_to_float(to_double(f) * 3),
     // g[L + i] = (to_double(f) > 0.5 as a float mask) ? 1 : 0, g[2L + i] =
@@ -36,51 +78,35 @@ struct CpuKernels {
     void (*dialect_double_probe)(const float* f, const u32* u, double* d, float* g, u32* v);
     // pn_ugather_pair on one strip: first[i] = table[index[i]], second[i] = table[index[i] + 1].
     void (*dialect_gather_pair_probe)(const u32* table, const int* index, u32* first, u32* second);
-
-    // Entry points, in the order of kernels/registry.h.
-    void (*sat_bands_float)(const float*, float*, float*, float*, int*, SatParams, int task);
-    void (*sat_bands_exact)(const float*, u32*, u32*, u32*, int*, SatParams, int task);
-    void (*sat_join_bands_float)(float*, const float*, SatParams, int x, int y);
-    void (*sat_join_bands_exact)(u32*, const u32*, SatParams, int x, int y);
-    void (*vsm_float)(const float*, const float*, float*, int*, ChebyshevParams, int x, int y);
-    void (*vsm_exact)(const u32*, const float*, float*, int*, ChebyshevParams, int x, int y);
-    void (*vssm_float)(const float*, const float*, float*, int*, ChebyshevParams, int x, int y);
-    void (*vssm_exact)(const u32*, const float*, float*, int*, ChebyshevParams, int x, int y);
-    void (*bilateral_full)(const float*, const float*, const float*, const int*, const float*, float*, int*,
-                           BilateralParams, int x, int y);
-    void (*bilateral_horizontal)(const float*, const float*, const float*, const int*, const float*, float*, int*,
-                                 BilateralParams, int x, int y);
-    void (*bilateral_vertical)(const float*, const float*, const float*, const int*, const float*, float*,
-                               BilateralParams, int x, int y);
-    // The SIMD schedule's spans of kernels/bilateral.h (not registry entries):
-    // the strips from x0 to x1 of rows [y0, y1).
-    void (*bilateral_full_span)(const float*, const float*, const float*, const int*, const float*, float*, int*,
-                                BilateralParams, int x0, int x1, int y0, int y1);
-    void (*bilateral_horizontal_span)(const float*, const float*, const float*, const int*, const float*, float*,
-                                      int*, BilateralParams, int x0, int x1, int y0, int y1);
-    void (*bilateral_vertical_span)(const float*, const float*, const float*, const int*, const float*, float*,
-                                    BilateralParams, int x0, int x1, int y0, int y1);
-    void (*sdf_grid)(const float*, const float*, const float*, float*, int*, SdfParams, int x, int y);
-    void (*sdf_analytic)(const float*, const float*, const float*, float*, int*, SdfParams, int x, int y);
-    void (*encoded_bands_float)(const float*, float*, float*, int*, EncodedSatParams, int task);
-    void (*encoded_bands_exact)(const float*, u32*, u32*, int*, EncodedSatParams, int task);
-    void (*msm_float)(const float*, const float*, float*, int*, MomentParams, int x, int y);
-    void (*msm_exact)(const u32*, const float*, float*, int*, MomentParams, int x, int y);
-    void (*msm_soft_float)(const float*, const float*, float*, int*, MomentParams, int x, int y);
-    void (*msm_soft_exact)(const u32*, const float*, float*, int*, MomentParams, int x, int y);
-    void (*evsm_float)(const float*, const float*, float*, int*, MomentParams, int x, int y);
-    void (*evsm_exact)(const u32*, const float*, float*, int*, MomentParams, int x, int y);
 };
 
-extern const CpuKernels kernels_scalar;
-extern const CpuKernels kernels_sse4_2;
-extern const CpuKernels kernels_avx2;
-extern const CpuKernels kernels_avx512;
+// The member of CpuKernels that holds entry K: kernels.*CpuEntryMember<K>::pointer.
+template <KernelId K>
+struct CpuEntryMember;
+#define PN_CPU_ENTRY_POINTER(family, name, shape, Params, buffers)               \
+    template <>                                                                 \
+    struct CpuEntryMember<KernelId::name> {                                     \
+        static constexpr CpuEntry<KernelId::name> CpuKernels::*pointer = &CpuKernels::name; \
+    };
+PN_KERNEL_TABLE(PN_CPU_ENTRY_POINTER)
+#undef PN_CPU_ENTRY_POINTER
 
-// ISAs this CPU can run, best last (never includes "scalar").
+template <KernelId K>
+CpuEntry<K> entry(const CpuKernels& kernels)
+{
+    return kernels.*CpuEntryMember<K>::pointer;
+}
+
+// One table per ISA this build compiled (PENUMBRA_CPU_ISAS, simd/isa_list.h).
+#define PN_CPU_TABLE_DECLARATION(id, label, arch, flags, check) extern const CpuKernels kernels_##id;
+PN_CPU_ISAS(PN_CPU_TABLE_DECLARATION)
+#undef PN_CPU_TABLE_DECLARATION
+
+// ISAs this build holds and this CPU can run, best last (never includes "scalar").
 std::vector<std::string_view> supported_isas();
 // The table for an ISA name ("scalar", "sse4.2", "avx2", "avx512"); throws
-// Error(InvalidArgument) for an unknown name, Error(Unavailable) for one this CPU cannot run.
+// Error(InvalidArgument) for a name that is not an ISA of this build,
+// Error(Unavailable) for one this CPU cannot run.
 const CpuKernels& kernels_for(std::string_view isa);
 // The ISA the SIMD backend uses: PENUMBRA_SIMD_ISA if set (checked), else the best.
 std::string_view chosen_isa();

@@ -38,17 +38,16 @@ SatParams join_params(const EncodedSatParams& p)
     return s;
 }
 
-template <class T, class Bands, class Join>
-void build_in_bands(const Image& depth, T* origin, EncodedSatParams p, int* bad_rows, int lanes, Bands bands_kernel,
-                    Join join_kernel)
+// Pass 1 (entry Bands, a task per band) then pass 2 (entry Join, per pixel).
+template <KernelId Bands, KernelId Join, class T>
+void build_in_bands(const CpuKernels& kernels, const Image& depth, T* origin, EncodedSatParams p, int* bad_rows)
 {
     const int bands = (depth.height() + p.band_height - 1) / p.band_height;
     std::vector<T> columns(std::size_t(p.columns.plane_pitch) * std::size_t(p.channels), T(0));
-    tbb::parallel_for(0, bands,
-                      [&](int band) { bands_kernel(depth.plane(0), origin, columns.data(), bad_rows, p, band); });
-    const SatParams s = join_params(p);
-    for_each_strip(depth.width(), depth.height(), lanes,
-                   [&](int x, int y) { join_kernel(origin, columns.data(), s, x, y); });
+    T* column_sums = columns.data();
+    launch_tasks<Bands>(kernels, bands, depth.plane(0), origin, column_sums, bad_rows, p);
+    launch_pixels<Join>(kernels, depth.width(), depth.height(), origin, static_cast<const T*>(column_sums),
+                        join_params(p));
 }
 
 }  // namespace
@@ -62,30 +61,26 @@ void CpuBackend::build_encoded_table(const Image& depth, const EncodedSatParams&
     const int pitch = padded_pitch(depth.width());
     p.columns = {depth.width(), bands, pitch, pitch * bands};
     if (table.precision() == Precision::Float)
-        build_in_bands(depth, table.float_origin(), p, bad_rows, k_.lanes, k_.encoded_bands_float,
-                       k_.sat_join_bands_float);
+        build_in_bands<KernelId::encoded_bands_float, KernelId::sat_join_bands_float>(kernels_, depth,
+                                                                                      table.float_origin(), p, bad_rows);
     else
-        build_in_bands(depth, table.exact_origin(), p, bad_rows, k_.lanes, k_.encoded_bands_exact,
-                       k_.sat_join_bands_exact);
+        build_in_bands<KernelId::encoded_bands_exact, KernelId::sat_join_bands_exact>(kernels_, depth,
+                                                                                      table.exact_origin(), p, bad_rows);
 }
 
 void CpuBackend::moment_lookup(MomentMethod method, const MomentTable& table, const Image& receivers,
                                const MomentParams& p, Image& out, int* bad_rows)
 {
-    const float* rx = receivers.plane(0);
-    float* result = out.plane(0);
-    if (table.precision() == Precision::Float) {
-        auto* kernel = method == MomentMethod::Msm ? k_.msm_float
-                       : method == MomentMethod::MsmSoft ? k_.msm_soft_float
-                                                         : k_.evsm_float;
-        for_each_strip(out.width(), out.height(), k_.lanes,
-                       [&](int x, int y) { kernel(table.float_origin(), rx, result, bad_rows, p, x, y); });
-    } else {
-        auto* kernel = method == MomentMethod::Msm ? k_.msm_exact
-                       : method == MomentMethod::MsmSoft ? k_.msm_soft_exact
-                                                         : k_.evsm_exact;
-        for_each_strip(out.width(), out.height(), k_.lanes,
-                       [&](int x, int y) { kernel(table.exact_origin(), rx, result, bad_rows, p, x, y); });
+    switch (method) {
+    case MomentMethod::Msm:
+        return launch_table_lookup<KernelId::msm_float, KernelId::msm_exact>(kernels_, table, receivers, p, out,
+                                                                             bad_rows);
+    case MomentMethod::MsmSoft:
+        return launch_table_lookup<KernelId::msm_soft_float, KernelId::msm_soft_exact>(kernels_, table, receivers, p,
+                                                                                       out, bad_rows);
+    case MomentMethod::Evsm:
+        return launch_table_lookup<KernelId::evsm_float, KernelId::evsm_exact>(kernels_, table, receivers, p, out,
+                                                                               bad_rows);
     }
 }
 

@@ -1,8 +1,13 @@
-// Schedules shared by the CPU launches of every kernel family.
+// Schedules shared by the CPU launches of every kernel family: the one
+// per-pixel launch and the one task launch of a kernel-table entry.
 #pragma once
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include "penumbra/image.h"
+#include "penumbra/moment_table.h"
+#include "simd/cpu_kernels.h"
 
 namespace penumbra::cpu {
 
@@ -17,6 +22,39 @@ void for_each_strip(int width, int height, int lanes, Kernel&& kernel)
         for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = 0; x < width; x += lanes) kernel(x, y);
     });
+}
+
+// Pixel entry K over a width x height grid: args are its buffers and Params,
+// in the order of its kernel-table entry (the signature checks them).
+template <KernelId K, class... Args>
+void launch_pixels(const CpuKernels& kernels, int width, int height, const Args&... args)
+{
+    static_assert(detail::KernelTraits<K>::shape == KernelShape::pixel, "launch_tasks runs a task entry");
+    const CpuEntry<K> kernel = entry<K>(kernels);
+    for_each_strip(width, height, kernels.lanes, [&](int x, int y) { kernel(args..., x, y); });
+}
+
+// Task entry K for tasks 0 .. tasks - 1, one TBB task each.
+template <KernelId K, class... Args>
+void launch_tasks(const CpuKernels& kernels, int tasks, const Args&... args)
+{
+    static_assert(detail::KernelTraits<K>::shape == KernelShape::task, "launch_pixels runs a pixel entry");
+    const CpuEntry<K> kernel = entry<K>(kernels);
+    tbb::parallel_for(0, tasks, [&](int task) { kernel(args..., task); });
+}
+
+// A lookup of a moment table per receiver: entry Float on a float table,
+// Exact on an exact one (the _float / _exact variants of one description).
+template <KernelId Float, KernelId Exact, class Params>
+void launch_table_lookup(const CpuKernels& kernels, const MomentTable& table, const Image& receivers,
+                         const Params& p, Image& out, int* bad_rows)
+{
+    if (table.precision() == Precision::Float)
+        launch_pixels<Float>(kernels, out.width(), out.height(), table.float_origin(), receivers.plane(0), out.plane(0),
+                             bad_rows, p);
+    else
+        launch_pixels<Exact>(kernels, out.width(), out.height(), table.exact_origin(), receivers.plane(0), out.plane(0),
+                             bad_rows, p);
 }
 
 }  // namespace penumbra::cpu

@@ -1,5 +1,5 @@
-// CPU launches of the SDF soft shadows (kernels/sdf.h): one strip of lanes per
-// call, rows spread over TBB's threads.
+// CPU launches of the SDF soft shadows (kernels/sdf.h): the per-pixel launch,
+// one strip of lanes per call, rows spread over TBB's threads.
 //
 // Schedule notes (docs/sdf.md, "Lane utilisation"): a strip's march runs until
 // its slowest lane is done. Strips along rows keep 91% of lane-steps active on
@@ -17,21 +17,15 @@ namespace penumbra::cpu {
 void CpuBackend::sdf_grid(const float* data, std::size_t, const Image& positions, const Image& normals,
                           const SdfParams& p, Image& out, int* bad_rows)
 {
-    const float* rx = positions.plane(0);
-    const float* n = normals.plane(0);
-    float* result = out.plane(0);
-    for_each_strip(out.width(), out.height(), k_.lanes,
-                   [&](int x, int y) { k_.sdf_grid(data, rx, n, result, bad_rows, p, x, y); });
+    launch_pixels<KernelId::sdf_grid>(kernels_, out.width(), out.height(), data, positions.plane(0), normals.plane(0),
+                                      out.plane(0), bad_rows, p);
 }
 
 void CpuBackend::sdf_analytic(const float* data, std::size_t, const Image& positions, const Image& normals,
                               const SdfParams& p, Image& out, int* bad_rows)
 {
-    const float* rx = positions.plane(0);
-    const float* n = normals.plane(0);
-    float* result = out.plane(0);
-    for_each_strip(out.width(), out.height(), k_.lanes,
-                   [&](int x, int y) { k_.sdf_analytic(data, rx, n, result, bad_rows, p, x, y); });
+    launch_pixels<KernelId::sdf_analytic>(kernels_, out.width(), out.height(), data, positions.plane(0),
+                                          normals.plane(0), out.plane(0), bad_rows, p);
 }
 
 }  // namespace penumbra::cpu

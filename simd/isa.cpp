@@ -1,4 +1,6 @@
-// Which instruction sets this CPU runs, and which one the SIMD backend uses.
+// Which instruction sets this build holds and this CPU runs, and which one
+// the SIMD backend uses; the ISAs are those of simd/isa_list.h that
+// PENUMBRA_CPU_ISAS built (PN_CPU_ISAS).
 #include <cstdlib>
 #include <string>
 
@@ -8,42 +10,64 @@
 namespace penumbra::cpu {
 namespace {
 
-bool cpu_has_avx512()
+struct BuiltIsa {
+    const CpuKernels* kernels;
+    bool runs_here;
+};
+
+const std::vector<BuiltIsa>& built_isas()
 {
-    // The avx512 table is built with F, CD, BW, DQ and VL (Skylake-SP and later).
-    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
-           __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
-           __builtin_cpu_supports("avx512vl");
+    static const std::vector<BuiltIsa> isas{
+#define PN_BUILT_ISA(id, label, arch, flags, check) {&kernels_##id, bool(check)},
+        PN_CPU_ISAS(PN_BUILT_ISA)
+#undef PN_BUILT_ISA
+    };
+    return isas;
 }
 
-bool cpu_has_avx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
-bool cpu_has_sse4_2() { return __builtin_cpu_supports("sse4.2"); }
+bool is_known_isa(std::string_view isa)
+{
+#define PN_KNOWN_ISA(id, label, arch, flags, check) \
+    if (isa == label) return true;
+    PN_ISA_ALL(PN_KNOWN_ISA)
+#undef PN_KNOWN_ISA
+    return false;
+}
+
+std::string known_isa_labels()
+{
+    std::string labels;
+#define PN_KNOWN_ISA_LABEL(id, label, arch, flags, check) labels += (labels.empty() ? "" : ", ") + std::string(label);
+    PN_ISA_ALL(PN_KNOWN_ISA_LABEL)
+#undef PN_KNOWN_ISA_LABEL
+    return labels;
+}
 
 }  // namespace
 
 std::vector<std::string_view> supported_isas()
 {
     std::vector<std::string_view> isas;
-    if (cpu_has_sse4_2()) isas.push_back(kernels_sse4_2.isa);
-    if (cpu_has_avx2()) isas.push_back(kernels_avx2.isa);
-    if (cpu_has_avx512()) isas.push_back(kernels_avx512.isa);
+    for (const BuiltIsa& built : built_isas())
+        if (built.runs_here && built.kernels != &kernels_scalar) isas.push_back(built.kernels->isa);
     return isas;
 }
 
 const CpuKernels& kernels_for(std::string_view isa)
 {
-    if (isa == kernels_scalar.isa) return kernels_scalar;
-    const CpuKernels* tables[] = {&kernels_sse4_2, &kernels_avx2, &kernels_avx512};
-    for (const CpuKernels* table : tables) {
-        if (isa != table->isa) continue;
-        for (std::string_view supported : supported_isas())
-            if (supported == isa) return *table;
+    for (const BuiltIsa& built : built_isas()) {
+        if (isa != built.kernels->isa) continue;
+        if (built.runs_here) return *built.kernels;
         throw Error(ErrorCategory::Unavailable, "simd",
                     "this CPU cannot run the " + std::string(isa) +
                         " kernels; choose one of the ISAs `penumbra info` lists");
     }
+    if (is_known_isa(isa))
+        throw Error(ErrorCategory::Unavailable, "simd",
+                    "this build of penumbra has no " + std::string(isa) +
+                        " kernels (configure with PENUMBRA_CPU_ISAS including it); `penumbra info` lists those it has");
     throw Error(ErrorCategory::InvalidArgument, "simd",
-                "unknown ISA '" + std::string(isa) + "'; valid: scalar, sse4.2, avx2, avx512");
+                "unknown ISA '" + std::string(isa) + "'; valid: " + known_isa_labels());
 }
 
 std::string_view chosen_isa()

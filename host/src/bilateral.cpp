@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "backend.h"
+#include "host/backend/backend.h"
 #include "penumbra/error.h"
 
 namespace penumbra {

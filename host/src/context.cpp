@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "backend.h"
+#include "host/backend/backend.h"
 #include "penumbra/config.h"
 #include "penumbra/error.h"
 #include "simd/cpu_backend.h"

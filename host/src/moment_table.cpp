@@ -9,7 +9,7 @@
 #include <cstring>
 #include <string>
 
-#include "backend.h"
+#include "host/backend/backend.h"
 #include "penumbra/error.h"
 
 namespace penumbra {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "backend.h"
+#include "host/backend/backend.h"
 #include "window_limits.h"
 #include "penumbra/error.h"
 #include "penumbra/parameter_range.h"

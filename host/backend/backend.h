@@ -1,6 +1,8 @@
-// The interface every backend implements: one method per host operation.
-// Inputs are validated before these are called (host/src/*.cpp); a backend
-// trusts its arguments.
+// The interface every backend implements (simd/cpu_backend.h,
+// cl/opencl_backend.h): one method per host operation; host/src/*.cpp call it.
+// Inputs are validated before these are called; a backend trusts its
+// arguments. The kernels it runs are named by KernelId (kernel_id.h, beside
+// this file).
 #pragma once
 
 #include <string>

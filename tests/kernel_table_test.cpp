@@ -1,14 +1,14 @@
-// The kernel registry (kernels/registry.h) against every backend, and the
+// The kernel table (kernels/kernel_table.h) against every backend, and the
 // purity of the kernel descriptions (STYLE.md items 2 and 7).
 //
-// Registry -> CPU tables: each entry is named as a CpuKernels member through
-// the X-macro, so an entry without a table member does not compile, and a null
-// pointer in any table fails. Tables -> registry: the table's size is pinned
-// to the registry's length, so a member without an entry fails to compile.
-// Registry <-> OpenCL: every entry is a cl::Kernel of the embedded program,
-// and the program has no kernel the registry lacks. Registry <-> sources:
-// every PN_KERNEL in kernels/ is an entry and every entry a PN_KERNEL.
-#include "kernels/registry.h"
+// Table -> CPU tables: CpuKernels's entry members are generated from the
+// table and filled from it (simd/cpu_kernels.cpp), so an entry no description
+// defines does not compile; here every member, and every hand-listed helper,
+// is set on every ISA this build holds and this CPU runs. Table <-> OpenCL:
+// every entry is a kernel of the embedded program, and the program has no
+// kernel the table lacks. Table <-> sources: every PN_KERNEL in kernels/ is
+// an entry and every entry a PN_KERNEL.
+#include "host/backend/kernel_id.h"
 
 #include <gtest/gtest.h>
 
@@ -34,30 +34,33 @@ namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
+using detail::KernelId;
 
-std::set<std::string> registry_names()
+std::vector<KernelId> table_ids()
+{
+    std::vector<KernelId> ids;
+    for (int i = 0; i < detail::kKernelCount; ++i) ids.push_back(KernelId(i));
+    return ids;
+}
+
+std::set<std::string> table_names()
 {
     std::set<std::string> names;
-#define PN_REGISTRY_NAME(entry) names.insert(#entry);
-    PN_KERNEL_REGISTRY(PN_REGISTRY_NAME)
-#undef PN_REGISTRY_NAME
+    for (KernelId id : table_ids()) names.emplace(detail::kernel_name(id));
     return names;
 }
 
-constexpr int registry_size()
+TEST(KernelTable, NamesAreUniqueAndFamiliesNamed)
 {
-    int n = 0;
-#define PN_REGISTRY_COUNT(entry) ++n;
-    PN_KERNEL_REGISTRY(PN_REGISTRY_COUNT)
-#undef PN_REGISTRY_COUNT
-    return n;
+    ASSERT_GE(detail::kKernelCount, 8);
+    EXPECT_EQ(table_names().size(), std::size_t(detail::kKernelCount)) << "two entries share a name";
+    std::set<std::string_view> families;
+    for (KernelId id : table_ids()) {
+        EXPECT_FALSE(detail::kernel_name(id).empty());
+        families.insert(detail::family_name(detail::kernel_family(id)));
+    }
+    EXPECT_EQ(families.size(), std::size_t(detail::kFamilyCount)) << "a family with no entry";
 }
-
-// isa, lanes, the two wavefront block functions, the two dialect probes, then
-// one pointer per entry, then the three spans of the bilateral filter.
-static_assert(sizeof(cpu::CpuKernels) ==
-                  offsetof(cpu::CpuKernels, sat_block_float) + (7 + registry_size()) * sizeof(void (*)()),
-              "CpuKernels has a member that kernels/registry.h lacks (or the reverse)");
 
 std::vector<std::string> cpu_tables()
 {
@@ -66,18 +69,22 @@ std::vector<std::string> cpu_tables()
     return names;
 }
 
-TEST(Registry, EveryEntryIsInEveryCpuTable)
+TEST(KernelTable, EveryEntryAndHelperIsSetInEveryCpuTable)
 {
-    ASSERT_GE(registry_size(), 8);
     for (const std::string& isa : cpu_tables()) {
         const cpu::CpuKernels& table = cpu::kernels_for(isa);
         EXPECT_EQ(std::string(table.isa), isa);
         EXPECT_GE(table.lanes, 1);
-#define PN_CHECK_ENTRY(entry) EXPECT_NE(table.entry, nullptr) << isa << " has no " #entry;
-        PN_KERNEL_REGISTRY(PN_CHECK_ENTRY)
+#define PN_CHECK_ENTRY(family, name, shape, Params, buffers) \
+    EXPECT_NE(cpu::entry<KernelId::name>(table), nullptr) << isa << " has no " #name;
+        PN_KERNEL_TABLE(PN_CHECK_ENTRY)
 #undef PN_CHECK_ENTRY
-        EXPECT_NE(table.sat_block_float, nullptr) << isa;
-        EXPECT_NE(table.sat_block_exact, nullptr) << isa;
+        for (const void* helper :
+             {(const void*)table.sat_block_float, (const void*)table.sat_block_exact,
+              (const void*)table.bilateral_full_span, (const void*)table.bilateral_horizontal_span,
+              (const void*)table.bilateral_vertical_span, (const void*)table.dialect_double_probe,
+              (const void*)table.dialect_gather_pair_probe})
+            EXPECT_NE(helper, nullptr) << isa;
     }
 }
 
@@ -134,18 +141,16 @@ TEST(DialectGatherPair, AdjacentElementsPerLaneOnEveryCpuBinding)
     }
 }
 
-TEST(Registry, EveryEntryIsAKernelOfTheOpenClProgram)
+TEST(KernelTable, EveryEntryIsAKernelOfTheOpenClProgram)
 {
 #if PENUMBRA_OPENCL
     std::string why;
     if (!testing::shared_context("opencl", &why)) GTEST_SKIP() << "OpenCL unavailable here: " << why;
-    std::vector<std::string> backend_names = cl_backend::registry_kernel_names();
-    EXPECT_EQ(std::set<std::string>(backend_names.begin(), backend_names.end()), registry_names());
 
     // The same program the context built (same source and options: a cache hit).
     cl_backend::Runtime runtime(cl_backend::DeviceChoice::Any);
     const cl::Program program = runtime.build(cl_backend::kEmbeddedProgramSource, cl_backend::kProgramOptions);
-    for (const std::string& name : registry_names()) {
+    for (const std::string& name : table_names()) {
         try {
             cl::Kernel kernel(program, name.c_str());
             EXPECT_EQ(kernel.getInfo<CL_KERNEL_FUNCTION_NAME>(), name);
@@ -159,7 +164,7 @@ TEST(Registry, EveryEntryIsAKernelOfTheOpenClProgram)
     std::stringstream names(listed);
     for (std::string name; std::getline(names, name, ';');)
         if (!name.empty()) in_program.insert(name);
-    EXPECT_EQ(in_program, registry_names()) << "the OpenCL program's kernels differ from the registry";
+    EXPECT_EQ(in_program, table_names()) << "the OpenCL program's kernels differ from the kernel table";
 #else
     GTEST_SKIP() << "this build has no OpenCL backend (PENUMBRA_OPENCL=OFF)";
 #endif
@@ -260,17 +265,25 @@ TEST(DialectPurity, KernelDescriptionsNameNoIsaNoLanesNoOpenCl)
     EXPECT_TRUE(saw_dialect);
 }
 
-TEST(DialectPurity, EveryKernelEntryPointIsRegistered)
+// An entry written once for both table types (kernels/dialect.h,
+// PN_TABLE_VARIANTS) is `PN_KERNEL void NAME_##variant(`: entries NAME_float
+// and NAME_exact.
+TEST(DialectPurity, EveryKernelEntryPointIsInTheTable)
 {
     std::set<std::string> declared;
-    const std::regex entry(R"(PN_KERNEL\s+void\s+(\w+)\s*\()");
+    const std::regex entry(R"(PN_KERNEL\s+void\s+(\w+?)(##\s*variant)?\s*\()");
     for (const Source& s : kernel_sources()) {
         if (s.name == "dialect.h") continue;
         const std::string code = without_comments(s.text);
-        for (auto it = std::sregex_iterator(code.begin(), code.end(), entry); it != std::sregex_iterator(); ++it)
-            declared.insert((*it)[1].str());
+        for (auto it = std::sregex_iterator(code.begin(), code.end(), entry); it != std::sregex_iterator(); ++it) {
+            if (!(*it)[2].matched) {
+                declared.insert((*it)[1].str());
+                continue;
+            }
+            for (const char* variant : {"float", "exact"}) declared.insert((*it)[1].str() + variant);
+        }
     }
-    EXPECT_EQ(declared, registry_names()) << "a PN_KERNEL missing from kernels/registry.h, or an entry with no kernel";
+    EXPECT_EQ(declared, table_names()) << "a PN_KERNEL missing from kernels/kernel_table.h, or an entry with no kernel";
 }
 
 }  // namespace
