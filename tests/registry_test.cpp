@@ -5,8 +5,7 @@
 // the X-macro, so an entry without a table member does not compile, and a null
 // pointer in any table fails. Tables -> registry: the table's size is pinned
 // to the registry's length, so a member without an entry fails to compile.
-// Registry <-> OpenCL: every entry is a cl::Kernel of the embedded program,
-// and the program has no kernel the registry lacks. Registry <-> sources:
+// Registry <-> OpenCL: tests/opencl_programs_test.cpp. Registry <-> sources:
 // every PN_KERNEL in kernels/ is an entry and every entry a PN_KERNEL.
 #include "kernels/registry.h"
 
@@ -25,10 +24,6 @@
 #include "penumbra/config.h"
 #include "simd/cpu_kernels.h"
 #include "support/backends.h"
-#if PENUMBRA_OPENCL
-#include "cl/opencl_backend.h"
-#include "cl/opencl_runtime.h"
-#endif
 
 namespace penumbra {
 namespace {
@@ -132,37 +127,6 @@ TEST(DialectGatherPair, AdjacentElementsPerLaneOnEveryCpuBinding)
             EXPECT_EQ(second[i], table[index[i] + 1]) << isa << " lane " << i;
         }
     }
-}
-
-TEST(Registry, EveryEntryIsAKernelOfTheOpenClProgram)
-{
-#if PENUMBRA_OPENCL
-    std::string why;
-    if (!testing::shared_context("opencl", &why)) GTEST_SKIP() << "OpenCL unavailable here: " << why;
-    std::vector<std::string> backend_names = cl_backend::registry_kernel_names();
-    EXPECT_EQ(std::set<std::string>(backend_names.begin(), backend_names.end()), registry_names());
-
-    // The same program the context built (same source and options: a cache hit).
-    cl_backend::Runtime runtime(cl_backend::DeviceChoice::Any);
-    const cl::Program program = runtime.build(cl_backend::kEmbeddedProgramSource, cl_backend::kProgramOptions);
-    for (const std::string& name : registry_names()) {
-        try {
-            cl::Kernel kernel(program, name.c_str());
-            EXPECT_EQ(kernel.getInfo<CL_KERNEL_FUNCTION_NAME>(), name);
-        } catch (const cl::Error& e) {
-            ADD_FAILURE() << "no kernel " << name << " in the OpenCL program: " << cl_backend::opencl_error_name(e.err());
-        }
-    }
-    std::string listed = program.getInfo<CL_PROGRAM_KERNEL_NAMES>();
-    listed.erase(std::remove(listed.begin(), listed.end(), '\0'), listed.end());  // a driver's trailing NUL
-    std::set<std::string> in_program;
-    std::stringstream names(listed);
-    for (std::string name; std::getline(names, name, ';');)
-        if (!name.empty()) in_program.insert(name);
-    EXPECT_EQ(in_program, registry_names()) << "the OpenCL program's kernels differ from the registry";
-#else
-    GTEST_SKIP() << "this build has no OpenCL backend (PENUMBRA_OPENCL=OFF)";
-#endif
 }
 
 // ---- the kernel descriptions ------------------------------------------------------
