@@ -1,9 +1,10 @@
 # The kernel descriptions and the two ways they are compiled.
 #
-# PENUMBRA_KERNEL_FILES is the one ordered list of descriptions: the OpenCL
-# program is their concatenation in this order (after the OpenCL binding), and
-# the CPU translation units include them in the same order (after the xsimd or
-# scalar binding). A description may use what an earlier one defines.
+# PENUMBRA_KERNEL_FILES is the one ordered list of descriptions: each OpenCL
+# program (one per kernel family, below) concatenates the files it needs in
+# this order (after the OpenCL binding), and the CPU translation units include
+# them all in the same order (after the xsimd or scalar binding). A
+# description may use what an earlier one defines.
 set(PENUMBRA_KERNEL_FILES
   kernels/params.h
   kernels/dialect.h
