@@ -1,39 +1,32 @@
-// The OpenCL backend: the embedded program, its kernels, and the launches.
-// One class; each kernel family implements its methods in its own file
-// (cl/opencl_<family>.cpp), next to its launches.
+// The OpenCL backend: its device, its programs (one per kernel family, built
+// on first use: cl/opencl_programs.h) and the launches. One class; each kernel
+// family implements its methods in its own file (cl/opencl_<family>.cpp),
+// next to its launches, all through launch<K> (cl/opencl_launch.h).
 //
 // Schedule: per-pixel kernels run one work-item per pixel (the driver picks the
-// work-group size). Host images are wrapped with CL_MEM_USE_HOST_PTR so that a
-// CPU driver such as PoCL works in place; results are read back through a map,
-// which is free in that case.
+// work-group size); per-task kernels one work-item per task (a band of rows).
 #pragma once
 
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "host/backend/backend.h"
+#include "cl/opencl_launch.h"
+#include "cl/opencl_programs.h"
 #include "cl/opencl_runtime.h"
 
 namespace penumbra::cl_backend {
 
-extern const char* const kEmbeddedProgramSource;  // generated: kernels/params.h + cl/dialect_cl.h + kernels/*.h
-
-// Options every build of the program uses. Division and sqrt correctly
-// rounded, as on the CPU, so that the backends agree to the last bit where
-// the operations are the same.
-inline constexpr const char* kProgramOptions = "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt";
-
-// The entry points of kernels/registry.h, by name.
-std::vector<std::string> registry_kernel_names();
-
 class OpenClBackend final : public detail::BackendImpl {
 public:
+    // Finds the device; builds no program (that happens on first use).
     explicit OpenClBackend(bool non_cpu_only);
 
     std::string description() const override;
-    double program_build_seconds() const override { return build_seconds_; }
+    // The programs this context built so far (none before its first launch).
+    double program_build_seconds() const override { return programs_.build_seconds(); }
+    FamilyPrograms& programs() { return programs_; }
 
     // cl/opencl_moment_table.cpp
     void build_moment_table(const Image& depth, MomentTable& table, int* bad_rows) override;
@@ -56,29 +49,39 @@ public:
                        const MomentParams& params, Image& out, int* bad_rows) override;
 
 private:
-    cl::Kernel& kernel(const char* name) { return kernels_.at(name); }
     // A per-pixel lookup over a moment table (VSM, VSSM, MSM, EVSM entries share
-    // the argument list: table origin, receivers, output, row flags, params).
-    // cl/opencl_chebyshev.cpp
-    void table_lookup(const char* name, const MomentTable& table, const Image& receivers, const void* params,
-                      std::size_t params_bytes, Image& out, int* bad_rows);
+    // the argument list: table origin, receivers, output, row flags, params),
+    // FloatK on a float table, ExactK on an exact one. cl/opencl_chebyshev.cpp
+    template <detail::KernelId FloatK, detail::KernelId ExactK, class Params>
+    void table_lookup(const MomentTable& table, const Image& receivers, const Params& params, Image& out,
+                      int* bad_rows);
+    template <detail::KernelId K, class T, class Params>
+    void table_lookup_as(const MomentTable& table, const Image& receivers, const Params& params, Image& out,
+                         int* bad_rows);
+    template <detail::KernelId K>
+    void sdf(const float* data, std::size_t floats, const Image& positions, const Image& normals,
+             const SdfParams& params, Image& out, int* bad_rows);
+    // The table builds in the table's element type T, K the bands' scan.
+    template <detail::KernelId K, class T>
+    void build_table_as(const Image& depth, MomentTable& table, int* bad_rows);
+    template <detail::KernelId K, class T>
+    void build_encoded_table_as(const Image& depth, const EncodedSatParams& params, MomentTable& table,
+                                int* bad_rows);
+    // The join of the band totals shared by both table builds (kernels/moment_table.h).
+    template <class T>
+    void join_bands(const Output<T>& origin, const Output<T>& columns, const SatParams& params, Pixels pixels);
+
+    const cl::Context& context() const { return runtime_.context(); }
+    const cl::CommandQueue& queue() const { return runtime_.queue(); }
+    template <detail::KernelId K, class Range, class... A>
+    void launch(Range range, const A&... args)
+    {
+        cl_backend::launch<K>(programs_, runtime_.queue(), range, args...);
+    }
 
     Runtime runtime_;
-    cl::Program program_;
-    double build_seconds_ = 0.0;
-    std::map<std::string, cl::Kernel> kernels_;
+    FamilyPrograms programs_{runtime_};
 };
-
-// Buffers over host memory, shared by the launches.
-std::size_t image_bytes(const Image& image);
-cl::Buffer wrap(const cl::Context& context, const void* data, std::size_t bytes, cl_mem_flags access);
-cl::Buffer zeros(const cl::Context& context, std::size_t bytes);
-// The table's origin (its zero row) as a sub-buffer of its storage.
-cl::Buffer table_origin(cl::Buffer& storage, const MomentTable& table, cl_mem_flags access);
-// Makes the host copy of a USE_HOST_PTR buffer current.
-void sync_to_host(const cl::CommandQueue& queue, const cl::Buffer& buffer, std::size_t bytes);
-// A 2D launch over width x height pixels (PN_PIXEL_ARGS: row offset 0).
-void launch_pixels(const cl::CommandQueue& queue, cl::Kernel& kernel, int width, int height);
 
 bool has_non_cpu_device();
 // non_cpu_only: Auto's request (a GPU or accelerator); else any device, PoCL included.

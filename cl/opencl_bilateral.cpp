@@ -5,67 +5,38 @@
 
 namespace penumbra::cl_backend {
 
+using detail::KernelId;
+
 void OpenClBackend::cross_bilateral(const Image& mask, const Image& guide, const Image* normals,
                                     const std::vector<int>& taps, const std::vector<float>& weights, bool separable,
                                     const BilateralParams& params, Image& out, int* bad_rows)
 {
     translate_cl_errors([&] {
-        const cl::Context& ctx = runtime_.context();
-        const cl::CommandQueue& queue = runtime_.queue();
-        cl::Buffer mask_buf = wrap(ctx, mask.plane(0), image_bytes(mask), CL_MEM_READ_ONLY);
-        cl::Buffer guide_buf = wrap(ctx, guide.plane(0), image_bytes(guide), CL_MEM_READ_ONLY);
+        const Input<float> mask_buf = image_input(context(), mask);
+        const Input<float> guide_buf = image_input(context(), guide);
         // Without normals the kernels never read this argument; the guide stands in.
-        cl::Buffer normals_buf = normals ? wrap(ctx, normals->plane(0), image_bytes(*normals), CL_MEM_READ_ONLY)
-                                         : guide_buf;
-        cl::Buffer taps_buf(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, taps.size() * sizeof(int),
-                            const_cast<int*>(taps.data()));
-        cl::Buffer weights_buf(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, weights.size() * sizeof(float),
-                               const_cast<float*>(weights.data()));
-        cl::Buffer out_buf = wrap(ctx, out.plane(0), image_bytes(out), CL_MEM_WRITE_ONLY);
-        const std::size_t flag_bytes = std::size_t(mask.height()) * sizeof(int);
-        cl::Buffer flags = wrap(ctx, bad_rows, flag_bytes, CL_MEM_READ_WRITE);
+        const Input<float> normals_buf = normals ? image_input(context(), *normals) : guide_buf;
+        const Input<int> taps_buf = copy_of(context(), taps);
+        const Input<float> weights_buf = copy_of(context(), weights);
+        const Output<float> out_buf = image_output(context(), out);
+        const Output<int> flags = row_flags(context(), bad_rows, mask.height());
+        const Pixels pixels{out.width(), out.height()};
 
         if (!separable) {
-            cl::Kernel& k = kernel("bilateral_full");
-            k.setArg(0, mask_buf);
-            k.setArg(1, guide_buf);
-            k.setArg(2, normals_buf);
-            k.setArg(3, taps_buf);
-            k.setArg(4, weights_buf);
-            k.setArg(5, out_buf);
-            k.setArg(6, flags);
-            k.setArg(7, sizeof(BilateralParams), &params);
-            k.setArg(8, 0);
-            launch_pixels(queue, k, out.width(), out.height());
+            launch<KernelId::bilateral_full>(pixels, mask_buf, guide_buf, normals_buf, taps_buf, weights_buf, out_buf,
+                                             flags, params);
         } else {
             BilateralParams p = params;
             p.pass = detail::dims_of(out);  // a whole-image intermediate of the output's geometry
             p.pass_first_row = 0;
-            cl::Buffer pass(ctx, CL_MEM_READ_WRITE, image_bytes(out));
-            cl::Kernel& h = kernel("bilateral_horizontal");
-            h.setArg(0, mask_buf);
-            h.setArg(1, guide_buf);
-            h.setArg(2, normals_buf);
-            h.setArg(3, taps_buf);
-            h.setArg(4, weights_buf);
-            h.setArg(5, pass);
-            h.setArg(6, flags);
-            h.setArg(7, sizeof(BilateralParams), &p);
-            h.setArg(8, 0);
-            launch_pixels(queue, h, out.width(), out.height());
-            cl::Kernel& v = kernel("bilateral_vertical");
-            v.setArg(0, pass);
-            v.setArg(1, guide_buf);
-            v.setArg(2, normals_buf);
-            v.setArg(3, taps_buf);
-            v.setArg(4, weights_buf);
-            v.setArg(5, out_buf);
-            v.setArg(6, sizeof(BilateralParams), &p);
-            v.setArg(7, 0);
-            launch_pixels(queue, v, out.width(), out.height());
+            const Output<float> pass = scratch<float>(context(), image_floats(out));
+            launch<KernelId::bilateral_horizontal>(pixels, mask_buf, guide_buf, normals_buf, taps_buf, weights_buf,
+                                                   pass, flags, p);
+            launch<KernelId::bilateral_vertical>(pixels, as_input(pass), guide_buf, normals_buf, taps_buf,
+                                                 weights_buf, out_buf, p);
         }
-        sync_to_host(queue, out_buf, image_bytes(out));
-        sync_to_host(queue, flags, flag_bytes);
+        sync_to_host(queue(), out_buf);
+        sync_to_host(queue(), flags);
     });
 }
 

@@ -1,9 +1,10 @@
 # The kernel descriptions and the two ways they are compiled.
 #
-# PENUMBRA_KERNEL_FILES is the one ordered list of descriptions: the OpenCL
-# program is their concatenation in this order (after the OpenCL binding), and
-# the CPU translation units include them in the same order (after the xsimd or
-# scalar binding). A description may use what an earlier one defines.
+# PENUMBRA_KERNEL_FILES is the one ordered list of descriptions: each OpenCL
+# program (one per kernel family, below) concatenates the files it needs in
+# this order (after the OpenCL binding), and the CPU translation units include
+# them all in the same order (after the xsimd or scalar binding). A
+# description may use what an earlier one defines.
 set(PENUMBRA_KERNEL_FILES
   kernels/params.h
   kernels/dialect.h
@@ -31,24 +32,65 @@ foreach(f IN LISTS PENUMBRA_KERNEL_FILES)
 endforeach()
 file(CONFIGURE OUTPUT ${_gen}/penumbra_kernel_includes.h CONTENT "${_includes}")
 
-# OpenCL side: the binding and the descriptions as one string literal, built
-# at build time so that no file is read at run time.
-# The shared parameter layouts come first: the binding's accessors take pn_dims.
-set(_cl_inputs ${CMAKE_CURRENT_SOURCE_DIR}/kernels/params.h ${CMAKE_CURRENT_SOURCE_DIR}/cl/dialect_cl.h)
-foreach(f IN LISTS PENUMBRA_KERNEL_FILES)
-  if(NOT f STREQUAL "kernels/params.h")
-    list(APPEND _cl_inputs ${CMAKE_CURRENT_SOURCE_DIR}/${f})
+# OpenCL side: one program per family of PN_KERNEL_FAMILIES
+# (kernels/kernel_table.h), each its own string literal, built on first use of
+# one of its kernels (cl/opencl_backend.cpp) so that a run of one method
+# compiles only what that method needs. A program is the prelude (the shared
+# parameter layouts first: the binding's accessors take pn_dims; then the
+# binding and the dialect) and the description files below, in the order of
+# PENUMBRA_KERNEL_FILES. A family lists the files whose kernels it owns and
+# the files whose helpers those call; a helper file's own kernels stay out of
+# the program (cmake/embed_kernels.cmake). The embed step stops the build when
+# a table entry of the family is defined by none of its files.
+set(PENUMBRA_CL_FAMILY_FILES_moment_table kernels/moment_table.h)
+set(PENUMBRA_CL_FAMILY_FILES_chebyshev kernels/moment_table.h kernels/chebyshev.h kernels/vsm.h kernels/vssm.h)
+set(PENUMBRA_CL_FAMILY_FILES_bilateral kernels/bilateral.h)
+set(PENUMBRA_CL_FAMILY_FILES_sdf kernels/sdf.h)
+set(PENUMBRA_CL_FAMILY_FILES_moments
+  kernels/moment_table.h kernels/chebyshev.h kernels/vsm.h kernels/vssm.h kernels/moment_quantize.h
+  kernels/exponential_warp.h kernels/encoded_table.h kernels/evsm.h kernels/msm.h kernels/msm_soft.h)
+
+set(_table ${CMAKE_CURRENT_SOURCE_DIR}/kernels/kernel_table.h)
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_table})  # a new family reconfigures
+file(STRINGS ${_table} _families_line REGEX "^#define PN_KERNEL_FAMILIES\\(F\\)")
+string(REGEX MATCHALL "F\\([a-z_0-9]+\\)" _families "${_families_line}")
+string(REGEX REPLACE "F\\(([a-z_0-9]+)\\)" "\\1" PENUMBRA_CL_FAMILIES "${_families}")
+if(NOT PENUMBRA_CL_FAMILIES)
+  message(FATAL_ERROR "kernels/kernel_table.h: cannot read the line '#define PN_KERNEL_FAMILIES(F) ...'")
+endif()
+
+set(_cl_prelude ${CMAKE_CURRENT_SOURCE_DIR}/kernels/params.h ${CMAKE_CURRENT_SOURCE_DIR}/cl/dialect_cl.h
+    ${CMAKE_CURRENT_SOURCE_DIR}/kernels/dialect.h)
+list(LENGTH _cl_prelude _cl_prelude_count)
+set(PENUMBRA_EMBEDDED_KERNELS "")
+foreach(family IN LISTS PENUMBRA_CL_FAMILIES)
+  if(NOT DEFINED PENUMBRA_CL_FAMILY_FILES_${family})
+    message(FATAL_ERROR "the kernel family '${family}' (kernels/kernel_table.h) has no "
+                        "PENUMBRA_CL_FAMILY_FILES_${family} in cmake/penumbra_kernels.cmake")
   endif()
+  set(_inputs ${_cl_prelude})
+  foreach(f IN LISTS PENUMBRA_KERNEL_FILES)  # keeps the dependency order
+    if(f IN_LIST PENUMBRA_CL_FAMILY_FILES_${family})
+      list(APPEND _inputs ${CMAKE_CURRENT_SOURCE_DIR}/${f})
+    endif()
+  endforeach()
+  foreach(f IN LISTS PENUMBRA_CL_FAMILY_FILES_${family})
+    if(NOT f IN_LIST PENUMBRA_KERNEL_FILES)
+      message(FATAL_ERROR "PENUMBRA_CL_FAMILY_FILES_${family}: ${f} is not in PENUMBRA_KERNEL_FILES")
+    endif()
+  endforeach()
+  set(_output ${_gen}/embedded_${family}.cpp)
+  string(REPLACE ";" "|" _inputs_arg "${_inputs}")  # a list cannot cross the command line
+  add_custom_command(
+    OUTPUT ${_output}
+    COMMAND ${CMAKE_COMMAND} -DOUTPUT=${_output} "-DINPUTS=${_inputs_arg}" -DSYMBOL=kProgramSource_${family}
+            -DFAMILY=${family} -DTABLE=${_table} -DPRELUDE_COUNT=${_cl_prelude_count}
+            -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/embed_kernels.cmake
+    DEPENDS ${_inputs} ${_table} ${CMAKE_CURRENT_SOURCE_DIR}/cmake/embed_kernels.cmake
+    COMMENT "Embedding the OpenCL program of the kernel family ${family}"
+    VERBATIM)
+  list(APPEND PENUMBRA_EMBEDDED_KERNELS ${_output})
 endforeach()
-set(PENUMBRA_EMBEDDED_KERNELS ${_gen}/embedded_kernels.cpp)
-string(REPLACE ";" "|" _cl_inputs_arg "${_cl_inputs}")  # a list cannot cross the command line
-add_custom_command(
-  OUTPUT ${PENUMBRA_EMBEDDED_KERNELS}
-  COMMAND ${CMAKE_COMMAND} -DOUTPUT=${PENUMBRA_EMBEDDED_KERNELS} "-DINPUTS=${_cl_inputs_arg}"
-          -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/embed_kernels.cmake
-  DEPENDS ${_cl_inputs} ${CMAKE_CURRENT_SOURCE_DIR}/cmake/embed_kernels.cmake
-  COMMENT "Embedding kernel descriptions for OpenCL"
-  VERBATIM)
 
 # CPU side: the same source compiled once per instruction set, each into its
 # own namespace with its own flags; simd/isa.cpp picks one at run time. The

@@ -5,8 +5,8 @@
 // table and filled from it (simd/cpu_kernels.cpp), so an entry no description
 // defines does not compile; here every member, and every hand-listed helper,
 // is set on every ISA this build holds and this CPU runs. Table <-> OpenCL:
-// every entry is a kernel of the embedded program, and the program has no
-// kernel the table lacks. Table <-> sources: every PN_KERNEL in kernels/ is
+// tests/opencl_programs_test.cpp (each family's program holds exactly its
+// entries). Table <-> sources: every PN_KERNEL in kernels/ is
 // an entry and every entry a PN_KERNEL.
 #include "host/backend/kernel_id.h"
 
@@ -25,10 +25,6 @@
 #include "penumbra/config.h"
 #include "simd/cpu_kernels.h"
 #include "support/backends.h"
-#if PENUMBRA_OPENCL
-#include "cl/opencl_backend.h"
-#include "cl/opencl_runtime.h"
-#endif
 
 namespace penumbra {
 namespace {
@@ -139,35 +135,6 @@ TEST(DialectGatherPair, AdjacentElementsPerLaneOnEveryCpuBinding)
             EXPECT_EQ(second[i], table[index[i] + 1]) << isa << " lane " << i;
         }
     }
-}
-
-TEST(KernelTable, EveryEntryIsAKernelOfTheOpenClProgram)
-{
-#if PENUMBRA_OPENCL
-    std::string why;
-    if (!testing::shared_context("opencl", &why)) GTEST_SKIP() << "OpenCL unavailable here: " << why;
-
-    // The same program the context built (same source and options: a cache hit).
-    cl_backend::Runtime runtime(cl_backend::DeviceChoice::Any);
-    const cl::Program program = runtime.build(cl_backend::kEmbeddedProgramSource, cl_backend::kProgramOptions);
-    for (const std::string& name : table_names()) {
-        try {
-            cl::Kernel kernel(program, name.c_str());
-            EXPECT_EQ(kernel.getInfo<CL_KERNEL_FUNCTION_NAME>(), name);
-        } catch (const cl::Error& e) {
-            ADD_FAILURE() << "no kernel " << name << " in the OpenCL program: " << cl_backend::opencl_error_name(e.err());
-        }
-    }
-    std::string listed = program.getInfo<CL_PROGRAM_KERNEL_NAMES>();
-    listed.erase(std::remove(listed.begin(), listed.end(), '\0'), listed.end());  // a driver's trailing NUL
-    std::set<std::string> in_program;
-    std::stringstream names(listed);
-    for (std::string name; std::getline(names, name, ';');)
-        if (!name.empty()) in_program.insert(name);
-    EXPECT_EQ(in_program, table_names()) << "the OpenCL program's kernels differ from the kernel table";
-#else
-    GTEST_SKIP() << "this build has no OpenCL backend (PENUMBRA_OPENCL=OFF)";
-#endif
 }
 
 // ---- the kernel descriptions ------------------------------------------------------

@@ -1,0 +1,43 @@
+#include "cl/opencl_launch.h"
+
+namespace penumbra::cl_backend {
+
+std::size_t image_floats(const Image& image) { return image.plane_pitch() * image.channels(); }
+
+Input<float> image_input(const cl::Context& context, const Image& image)
+{
+    return read_only(context, image.plane(0), image_floats(image));
+}
+
+Output<float> image_output(const cl::Context& context, Image& image)
+{
+    return read_write(context, image.plane(0), image_floats(image), CL_MEM_WRITE_ONLY);
+}
+
+Output<int> row_flags(const cl::Context& context, int* bad_rows, int rows)
+{
+    return read_write(context, bad_rows, std::size_t(rows));
+}
+
+cl::Buffer table_storage(const cl::Context& context, const MomentTable& table, cl_mem_flags access)
+{
+    return cl::Buffer(context, access | CL_MEM_USE_HOST_PTR, table.storage_elements() * 4,
+                      const_cast<void*>(static_cast<const void*>(table.storage())));
+}
+
+cl::Buffer table_origin(cl::Buffer& storage, const MomentTable& table, cl_mem_flags access)
+{
+    const std::size_t bytes = table.storage_elements() * 4;
+    cl_buffer_region region{table.origin_offset_bytes(), bytes - table.origin_offset_bytes()};
+    return storage.createSubBuffer(access, CL_BUFFER_CREATE_TYPE_REGION, &region);
+}
+
+void sync_to_host(const cl::CommandQueue& queue, const cl::Buffer& buffer, std::size_t bytes)
+{
+    void* mapped = queue.enqueueMapBuffer(buffer, CL_TRUE, CL_MAP_READ, 0, bytes);
+    cl::Event done;
+    queue.enqueueUnmapMemObject(buffer, mapped, nullptr, &done);
+    done.wait();
+}
+
+}  // namespace penumbra::cl_backend
