@@ -37,7 +37,7 @@
  * image reads the nearest border pixel. Strips whose window lies inside the
  * image take unchecked loads; the others clamp every tap.
  *
- * Two schedules of the one filter (the host chooses), each a registry kernel
+ * Two schedules of the one filter (the host chooses), each an entry of the kernel table
  * for one strip and a span of strips and rows for the SIMD schedule:
  *  - full: every tap of the 2D window (bilateral_full);
  *  - separable: the horizontal pass (bilateral_horizontal: the taps' dx,
@@ -244,8 +244,8 @@ PN_FN int bilateral_rows_inside(const BilateralParams p, int y)
 }
 
 /* ---- entry points ---------------------------------------------------------
- * The registry's kernels filter one strip; the spans filter the strips from
- * x0 to x1 of rows [y0, y1). The SIMD schedule calls the spans (not registry
+ * The table's kernels filter one strip; the spans filter the strips from
+ * x0 to x1 of rows [y0, y1). The SIMD schedule calls the spans (not table
  * entries, as moment_table.h's blocks) with whole rows: a call, and the work
  * the compiler hoists out of the strip loop, once per band of rows instead of
  * once per strip. The kernels call them with their one strip. */

@@ -6,7 +6,7 @@
  * simd/dialect_simd.h (xsimd, one pixel per lane, compiled once per ISA) and
  * simd/dialect_scalar.h (plain C++, one lane: the readable oracle). A
  * description never names a lane count, an ISA, xsimd or OpenCL; tests grep
- * for it (DialectPurity in tests/kernel_table_test.cpp).
+ * for it (DialectPurity in tests/kernels/kernel_table_test.cpp).
  *
  * Types
  *   pn_float, pn_int, pn_uint   per-pixel (per-lane) float, int32, uint32

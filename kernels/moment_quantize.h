@@ -13,7 +13,7 @@
  * Inputs: z in [0, 1] (a depth of the map). Outputs: encode gives four
  * values in [0, 1] (clamped: the exact map reaches -6.5e-8 for o_3); decode
  * takes four window means of encoded values and returns the means of z^k.
- * Measured (tests/moment_quantize_test.cpp): the decoded moments of one texel
+ * Measured (tests/kernels/moment_quantize_test.cpp): the decoded moments of one texel
  * are within 1.1e-5 of z^k for every 16-bit depth; T^-1 T = I to 4e-9. Both
  * matrices are the paper's; decode is linear, so it commutes with the box
  * filter: decoding a window mean is the mean of decoded texels.

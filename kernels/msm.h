@@ -64,7 +64,7 @@
  * lit one; a non-finite intensity would be replaced by the lower bound.
  * Boundary: z_f <= 0 gives 1 (nothing lies in front of the near plane),
  * z_f > 1 gives 0 (everything lies in front), never NaN. Output in [0, 1].
- * Accuracy against the exact bound and the truth (tests/msm_test.cpp):
+ * Accuracy against the exact bound and the truth (tests/kernels/msm_test.cpp):
  * docs/moments.md.
  */
 #ifndef PENUMBRA_MSM_H
