@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <future>
+#include <vector>
 
 #include "penumbra/exr_io.h"
 #include "penumbra/image.h"
@@ -140,6 +142,24 @@ TEST_F(CliRobustness, OutputsNeverReplaceInputsDevicesOrEachOther)
     struct stat status {};
     ASSERT_EQ(::stat("/dev/full", &status), 0);
     EXPECT_TRUE(S_ISCHR(status.st_mode)) << "/dev/full was replaced";
+}
+
+// Runs started together on one new --out folder: each makes it or finds it
+// made. The tool looked before creating, so a run that lost the race to
+// another saw "exists and is not a directory" (scripts/probe.py, once under
+// load). A race: against the old order this test failed 1 run in 4 here.
+TEST_F(CliRobustness, ConcurrentRunsShareANewOutFolder)
+{
+    for (int round = 0; round < 24; ++round) {
+        const std::string dir = path("shared" + std::to_string(round));
+        std::vector<std::future<testing::CliRun>> runs;
+        for (int i = 0; i < 6; ++i)
+            runs.push_back(std::async(std::launch::async, [&dir] { return run_cli({"example", "--out", dir}); }));
+        for (auto& run : runs) {
+            const testing::CliRun r = run.get();
+            EXPECT_EQ(r.exit_code, 0) << r.err;
+        }
+    }
 }
 
 // Defect 8: these were exit 1 "internal error".
