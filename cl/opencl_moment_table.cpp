@@ -18,17 +18,7 @@ constexpr int kBandHeight = 32;
 
 SatParams table_params(const Image& depth, const MomentTable& table, int bands)
 {
-    SatParams p{};
-    p.depth = detail::dims_of(depth);
-    p.table = detail::dims_of(table);
-    p.moments = table.moments();
-    p.limbs = table.limbs();
-    p.encoding = table.values().kind;
-    p.exponent_positive = table.values().positive;
-    p.exponent_negative = table.values().negative;
-    p.band_height = kBandHeight;
-    p.columns = {depth.width(), bands, padded_pitch(depth.width()), padded_pitch(depth.width()) * bands};
-    return p;
+    return detail::sat_params(depth, table, bands, kBandHeight);
 }
 
 }  // namespace

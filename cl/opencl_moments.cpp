@@ -14,18 +14,6 @@ namespace {
 
 constexpr int kBandHeight = 32;
 
-SatParams join_params(const EncodedSatParams& p)
-{
-    SatParams s{};
-    s.depth = p.depth;
-    s.table = p.table;
-    s.columns = p.columns;
-    s.moments = p.channels;
-    s.limbs = 1;
-    s.band_height = p.band_height;
-    return s;
-}
-
 }  // namespace
 
 void OpenClBackend::build_encoded_table(const Image& depth, const EncodedSatParams& params, MomentTable& table,
@@ -53,7 +41,7 @@ void OpenClBackend::build_encoded_table_as(const Image& depth, const EncodedSatP
     const Output<T> columns = zeros<T>(context(), std::size_t(p.columns.plane_pitch) * std::size_t(p.channels));
     const Output<int> flags = row_flags(context(), bad_rows, depth.height());
     launch<K>(Tasks{bands}, image_input(context(), depth), target.origin, columns, flags, p);
-    join_bands(target.origin, columns, join_params(p), Pixels{depth.width(), depth.height()});
+    join_bands(target.origin, columns, detail::join_params(p), Pixels{depth.width(), depth.height()});
     sync_to_host(queue(), target.storage, table.storage_elements() * 4);
     sync_to_host(queue(), flags);
 }

@@ -66,15 +66,8 @@ void CpuBackend::build_moment_table(const Image& depth, MomentTable& table, int*
     const int bw = band_width(depth.width());
     const int bands = (depth.width() + bw - 1) / bw;
     const int rows = (depth.height() + kBlockRows - 1) / kBlockRows;
-    SatParams p{};
-    p.depth = detail::dims_of(depth);
-    p.table = detail::dims_of(table);
-    p.moments = table.moments();
-    p.limbs = table.limbs();
-    p.encoding = table.values().kind;
-    p.exponent_positive = table.values().positive;
-    p.exponent_negative = table.values().negative;
-    p.columns = {depth.width(), 1, padded_pitch(depth.width()), padded_pitch(depth.width())};
+    // One row of column totals: the wavefront carries them down (band_height unused).
+    const SatParams p = detail::sat_params(depth, table, 1, 0);
     const std::size_t scratch = std::size_t(p.columns.plane_pitch) * table.planes();
     const std::size_t carries = std::size_t(depth.height()) * table.planes();
     auto run = [&](auto* origin, auto* columns, auto* carry, auto block_fn) {

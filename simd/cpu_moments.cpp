@@ -25,19 +25,6 @@ int band_height(int height)
     return (height + bands - 1) / bands;
 }
 
-// The join pass reads the same geometry as the moment table's.
-SatParams join_params(const EncodedSatParams& p)
-{
-    SatParams s{};
-    s.depth = p.depth;
-    s.table = p.table;
-    s.columns = p.columns;
-    s.moments = p.channels;
-    s.limbs = 1;
-    s.band_height = p.band_height;
-    return s;
-}
-
 // Pass 1 (entry Bands, a task per band) then pass 2 (entry Join, per pixel).
 template <KernelId Bands, KernelId Join, class T>
 void build_in_bands(const CpuKernels& kernels, const Image& depth, T* origin, EncodedSatParams p, int* bad_rows)
@@ -47,7 +34,7 @@ void build_in_bands(const CpuKernels& kernels, const Image& depth, T* origin, En
     T* column_sums = columns.data();
     launch_tasks<Bands>(kernels, bands, depth.plane(0), origin, column_sums, bad_rows, p);
     launch_pixels<Join>(kernels, depth.width(), depth.height(), origin, static_cast<const T*>(column_sums),
-                        join_params(p));
+                        detail::join_params(p));
 }
 
 }  // namespace

@@ -63,4 +63,12 @@ public:
 pn_dims dims_of(const Image& image);
 pn_dims dims_of(const MomentTable& table);
 
+// The moment table build's parameters for `depth` into `table`, with
+// `column_rows` rows of column totals and bands of `band_height` rows (the
+// schedule's choice): both backends' builds start from these.
+SatParams sat_params(const Image& depth, const MomentTable& table, int column_rows, int band_height);
+// The join pass of a banded encoded build (kernels/moment_table.h's
+// sat_join_bands_*) reads the encoded table as a one-limb moment table.
+SatParams join_params(const EncodedSatParams& p);
+
 }  // namespace penumbra::detail

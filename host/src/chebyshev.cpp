@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "host/backend/backend.h"
+#include "visibility_output.h"
 #include "window_limits.h"
 #include "penumbra/error.h"
 #include "penumbra/parameter_range.h"
@@ -63,16 +64,12 @@ void check_output(const std::string& op, const Image& receivers, const Image& ou
 
 Image vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options)
 {
-    Image out(receivers.width(), receivers.height(), 1, Image::Uninitialized{});  // the kernel writes every pixel or throws
-    vsm(context, table, receivers, options, out);
-    return out;
+    return detail::visibility_output(receivers, [&](Image& out) { vsm(context, table, receivers, options, out); });
 }
 
 Image vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options)
 {
-    Image out(receivers.width(), receivers.height(), 1, Image::Uninitialized{});  // the kernel writes every pixel or throws
-    vssm(context, table, receivers, options, out);
-    return out;
+    return detail::visibility_output(receivers, [&](Image& out) { vssm(context, table, receivers, options, out); });
 }
 
 void vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options, Image& out)

@@ -191,5 +191,33 @@ pn_dims dims_of(const MomentTable& table)
     return {table.width(), table.height(), table.pitch(), int(table.plane_pitch())};
 }
 
+SatParams sat_params(const Image& depth, const MomentTable& table, int column_rows, int band_height)
+{
+    SatParams p{};
+    p.depth = dims_of(depth);
+    p.table = dims_of(table);
+    p.moments = table.moments();
+    p.limbs = table.limbs();
+    p.encoding = table.values().kind;
+    p.exponent_positive = table.values().positive;
+    p.exponent_negative = table.values().negative;
+    p.band_height = band_height;
+    const int pitch = padded_pitch(depth.width());
+    p.columns = {depth.width(), column_rows, pitch, pitch * column_rows};
+    return p;
+}
+
+SatParams join_params(const EncodedSatParams& p)
+{
+    SatParams s{};
+    s.depth = p.depth;
+    s.table = p.table;
+    s.columns = p.columns;
+    s.moments = p.channels;
+    s.limbs = 1;
+    s.band_height = p.band_height;
+    return s;
+}
+
 }  // namespace detail
 }  // namespace penumbra

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "host/backend/backend.h"
+#include "visibility_output.h"
 #include "window_limits.h"
 #include "penumbra/error.h"
 #include "penumbra/parameter_range.h"
@@ -239,16 +240,12 @@ EvsmTable build_evsm_table(Context& context, const Image& depth, const EvsmWarp&
 
 Image msm(Context& context, const MsmTable& table, const Image& receivers, const MsmOptions& options)
 {
-    Image out(receivers.width(), receivers.height(), 1, Image::Uninitialized{});  // the kernel writes every pixel or throws
-    msm(context, table, receivers, options, out);
-    return out;
+    return detail::visibility_output(receivers, [&](Image& out) { msm(context, table, receivers, options, out); });
 }
 
 Image msm_soft(Context& context, const MsmTable& table, const Image& receivers, const MsmSoftOptions& options)
 {
-    Image out(receivers.width(), receivers.height(), 1, Image::Uninitialized{});  // the kernel writes every pixel or throws
-    msm_soft(context, table, receivers, options, out);
-    return out;
+    return detail::visibility_output(receivers, [&](Image& out) { msm_soft(context, table, receivers, options, out); });
 }
 
 void msm(Context& context, const MsmTable& table, const Image& receivers, const MsmOptions& options, Image& out)
@@ -281,9 +278,7 @@ void msm_soft(Context& context, const MsmTable& table, const Image& receivers, c
 
 Image evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options)
 {
-    Image out(receivers.width(), receivers.height(), 1, Image::Uninitialized{});  // the kernel writes every pixel or throws
-    evsm(context, table, receivers, options, out);
-    return out;
+    return detail::visibility_output(receivers, [&](Image& out) { evsm(context, table, receivers, options, out); });
 }
 
 void evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options, Image& out)
