@@ -321,6 +321,7 @@ cl::Program Runtime::build(const std::string& source, const std::string& options
     const std::uint64_t key = cache_key(source, options);
     last_cache_note_.clear();
 
+    const DriverCacheLock serialised;  // PoCL's cache is shared with other runs (program_cache.h)
     std::optional<cl::Program> program;
     if (auto binary = cache_.load(key, &last_cache_note_)) program = build_from_binary(*binary, options);
     last_build_from_cache_ = program.has_value();

@@ -2,11 +2,14 @@
 
 #include "cl/pocl_cache_guard.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
 #include <atomic>
+#include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -68,7 +71,39 @@ bool g_guarded = false;  // the PoCL folder is ours, usable, and checked
 
 fs::path pocl_manifest() { return fs::path(cache_directory()) / "pocl.manifest"; }
 
-extern "C" void record_pocl_cache_at_exit() { record_pocl_cache(pocl_cache_directory(), pocl_manifest()); }
+// The lock of DriverCacheLock: -1 when the folder has no usable lock file.
+int lock_driver_cache() noexcept
+{
+    try {
+        const std::string path = cache_directory() + "/pocl.lock";
+        int fd = -1;
+        do fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0600);
+        while (fd < 0 && errno == EINTR);
+        if (fd < 0) return -1;
+        int locked = -1;
+        do locked = ::flock(fd, LOCK_EX);
+        while (locked != 0 && errno == EINTR);
+        if (locked != 0) {
+            ::close(fd);
+            return -1;
+        }
+        return fd;
+    } catch (...) {
+        return -1;  // out of memory composing the path
+    }
+}
+
+void unlock_driver_cache(int fd) noexcept
+{
+    if (fd >= 0) ::close(fd);  // closing the last descriptor releases the flock
+}
+
+extern "C" void record_pocl_cache_at_exit()
+{
+    const int fd = lock_driver_cache();
+    record_pocl_cache(pocl_cache_directory(), pocl_manifest());
+    unlock_driver_cache(fd);
+}
 
 // PoCL drops its device, silently, when it cannot create or write its cache
 // folder; say so in words that name the folder and the variable to change.
@@ -96,7 +131,9 @@ void prepare_driver_cache_environment() noexcept
             if (error || ::access(dir.c_str(), W_OK | X_OK) != 0) {
                 g_driver_cache_problem = unusable_folder_problem(dir, error);
             } else {
+                const int fd = lock_driver_cache();  // no other run writes while we check
                 g_driver_cache_warning = check_pocl_cache(dir, pocl_manifest()).warning;
+                unlock_driver_cache(fd);
                 g_guarded = true;
                 std::atexit(record_pocl_cache_at_exit);
             }
@@ -118,6 +155,14 @@ std::string driver_cache_warning()
     prepare_driver_cache_environment();
     return g_driver_cache_warning;
 }
+
+DriverCacheLock::DriverCacheLock() noexcept
+{
+    prepare_driver_cache_environment();
+    fd_ = lock_driver_cache();
+}
+
+DriverCacheLock::~DriverCacheLock() { unlock_driver_cache(fd_); }
 
 void record_driver_cache()
 {

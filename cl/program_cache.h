@@ -61,6 +61,26 @@ std::string driver_cache_warning();
 // done at exit), so that a crash later in the run still leaves a record.
 void record_driver_cache();
 
+// Holds, for its scope, an advisory lock (flock) on cache_directory()/pocl.lock
+// that every penumbra process and thread sharing the cache folder takes while
+// it checks, builds into, packs binaries from or records PoCL's cache. PoCL
+// 3.1 keys its cache on the preprocessed source and packs a program binary
+// from that folder's files, so two processes building the same program at
+// once (two runs started together, ctest -j2 on a cold cache) could pack one
+// another's half-written files: an abort in pocl_binary_get_kernels_metadata
+// (`len > 0`) seen once in CI's fresh-machine run. Without a usable folder it
+// holds nothing and the build goes on unserialised. Not reentrant: never nest two.
+class DriverCacheLock {
+public:
+    DriverCacheLock() noexcept;
+    ~DriverCacheLock();
+    DriverCacheLock(const DriverCacheLock&) = delete;
+    DriverCacheLock& operator=(const DriverCacheLock&) = delete;
+
+private:
+    int fd_ = -1;
+};
+
 // Everything that decides what a program binary contains.
 struct ProgramIdentity {
     std::string_view source;

@@ -3,7 +3,9 @@
 // on a machine without an OpenCL platform; they never pass vacuously.
 #include "cl/opencl_runtime.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -88,6 +90,27 @@ TEST(OpenClBackendError, NamesCallAndError)
     const Error error = backend_error("clEnqueueNDRangeKernel", CL_INVALID_WORK_GROUP_SIZE);
     EXPECT_EQ(error.category(), ErrorCategory::Backend);
     EXPECT_STREQ(error.what(), "opencl: clEnqueueNDRangeKernel failed: CL_INVALID_WORK_GROUP_SIZE (-54)");
+}
+
+// Runs sharing a cache folder take turns at PoCL's cache (program_cache.h,
+// DriverCacheLock): while one holds the lock, another description of the lock
+// file (as another process or thread opens it) cannot take it; after, it can.
+TEST(DriverCacheLock, ExcludesOthersWhileHeldAndReleasesAfter)
+{
+    const std::string lock_file = cache_directory() + "/pocl.lock";
+    auto other_can_lock = [&] {
+        const int fd = ::open(lock_file.c_str(), O_RDWR | O_CLOEXEC);
+        if (fd < 0) return false;
+        const bool locked = ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+        ::close(fd);
+        return locked;
+    };
+    {
+        const DriverCacheLock held;
+        ASSERT_TRUE(fs::exists(lock_file));
+        EXPECT_FALSE(other_can_lock());
+    }
+    EXPECT_TRUE(other_can_lock());
 }
 
 TEST(ProgramKey, ChangesWithEveryField)
