@@ -43,7 +43,10 @@ status=0
 # run on the scalar oracle only: the same kernels meet ASan on avx512 and
 # OpenCL in every other kernel test, and the main job runs the sweeps on all.
 # (ctest names a parameterised test 'Suite.Name/param  # GetParam() = ...'.)
-ctest --test-dir "$build" --output-on-failure -j2 --timeout 1800 -LE slow -E 'MomentFidelity\..*/(avx512|opencl)( |$)' || status=1
+# --repeat until-pass:2: a test that fails is run once more (LSan's own
+# tracer can crash at exit, below); a real failure fails twice.
+ctest --test-dir "$build" --output-on-failure -j2 --timeout 1800 -LE slow -E 'MomentFidelity\..*/(avx512|opencl)( |$)' \
+  --repeat until-pass:2 || status=1
 # Second pass: the OpenCL tests again, with full unwinding through the driver
 # (8x slower, so not for the whole suite, nor for the fidelity sweeps, which
 # run the same launches many times) and suppressions by function only
@@ -59,8 +62,27 @@ if grep -l 'runtime error:' "$build/Testing/Temporary/LastTest.log" >/dev/null 2
   grep -B2 -A12 'runtime error:' "$build/Testing/Temporary/LastTest.log" | head -n 80
   status=1
 fi
-reports=("$logs"/*)
-if [[ -e ${reports[0]} ]]; then
+# LeakSanitizer's tracer (the thread that stops the world for the leak check
+# at exit) sometimes crashes by itself while PoCL's threads exit ("Tracer
+# caught signal 11 ... LeakSanitizer has encountered a fatal error", seen once
+# in 400 processes). Such a log holds no finding: the process's test failed
+# and was run again by ctest's --repeat, and that run's own log counts. Any
+# log with a finding in it counts, whatever else it holds.
+tracer_crash_only() {
+  grep -q 'LeakSanitizer has encountered a fatal error' "$1" &&
+    ! grep -q -E 'ERROR: (AddressSanitizer|LeakSanitizer)|SUMMARY: ' "$1"
+}
+reports=()
+for r in "$logs"/*; do
+  [[ -e $r ]] || continue
+  if tracer_crash_only "$r"; then
+    echo "sanitizer job: LeakSanitizer's tracer crashed in one process (no finding; its test was rerun): $r"
+    head -n 3 "$r"
+    continue
+  fi
+  reports+=("$r")
+done
+if ((${#reports[@]})); then
   echo "sanitizer job: ${#reports[@]} report(s) outside the suppressions:"
   for r in "${reports[@]}"; do echo "--- $r"; head -n 60 "$r"; done
   status=1
