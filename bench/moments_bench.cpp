@@ -16,7 +16,8 @@
 //    build step (msm-soft shares msm's table: timed once, as msm_table).
 // Storages, as `precision:`: exact (the default limb tables), 16bit (the
 // opt-in optimized quantization, for a method that reads `quantize`) and
-// float (the legacy float tables, quantization 32).
+// float (the legacy float tables, quantization 32); `map` for a method that
+// reads the shadow map itself (prepare_map: no table, no build case).
 // Methods that share VSM's build step (the two-moment table: vsm, vssm) are
 // bench/penumbra_bench.cpp's own cases (vsm_r8, vssm, table: three sizes,
 // beside memcpy and OpenCV) and are not registered again here.
@@ -52,6 +53,8 @@ struct Storage {
 const Storage kStorages[] = {{"exact", Quantization::None, Precision::Exact},
                              {"16bit", Quantization::Bits16, Precision::Exact},
                              {"float", Quantization::Bits32, Precision::Float}};
+// A method that reads the shadow map itself (prepare_map) has no storage choice.
+const Storage kMapItself{"map", Quantization::None, Precision::Exact};
 
 bool reads(const Method& m, std::string_view option)
 {
@@ -125,6 +128,7 @@ void build_step(benchmark::State& state, const Method& m, const MethodSettings& 
 // The storages a method takes: 16-bit only where it reads `quantize`.
 std::vector<const Storage*> storages_of(const Method& m)
 {
+    if (m.prepare == prepare_map) return {&kMapItself};
     std::vector<const Storage*> list;
     for (const Storage& s : kStorages)
         if (s.quantization != Quantization::Bits16 || reads(m, "quantize")) list.push_back(&s);
@@ -175,6 +179,7 @@ void register_on_backends(const std::string& op, const Storage& s, Run run)
                 });
             }
         const void* build = reinterpret_cast<const void*>(m.prepare);
+        if (m.prepare == prepare_map) continue;  // no table: nothing to time
         if (std::find(timed_builds.begin(), timed_builds.end(), build) != timed_builds.end()) continue;
         timed_builds.push_back(build);
         std::string op = std::string(m.name) + "_table";
