@@ -7,8 +7,9 @@
 //
 // Inputs: bench/bench_inputs.h's scene (a lit ground under a grid of square
 // occluders covering 36% of the map, receivers at every texel centre between
-// them), so that the figures compare with vsm_r8 and vssm. Box methods use
-// radius 8 like vsm_r8; msm_soft the default light size, like vssm.
+// them), so that the figures compare with vsm_r<n> and vssm. Box methods take
+// the radius from the name's last digit (msm_r8, evsm4_r2); msm_soft the
+// default light size, like vssm.
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
 
@@ -24,7 +25,6 @@ namespace penumbra::bench {
 namespace {
 
 constexpr int kSize = 4096;
-constexpr int kRadius = 8;
 
 // The storages: exact limb tables (the default), MSM's opt-in 16-bit
 // optimized quantization (EVSM has none: its 16-bit tables cannot keep the
@@ -94,7 +94,7 @@ void lookup(benchmark::State& state, const std::string& op, const std::string& b
     timed(state, backend, threads, [&](Context& ctx) {
         if (op.compare(0, 5, "msm_r") == 0) msm(ctx, msm_table(s), rx, MsmOptions{op[5] - '0', {}, {}}, out);
         else if (op == "msm_soft") msm_soft(ctx, msm_table(s), rx, MsmSoftOptions{}, out);
-        else evsm(ctx, evsm_table(s, op == "evsm2_r8" ? 2 : 4), rx, EvsmOptions{kRadius}, out);
+        else evsm(ctx, evsm_table(s, op[4] - '0'), rx, EvsmOptions{op[7] - '0'}, out);  // evsm<channels>_r<radius>
         benchmark::DoNotOptimize(out.plane(0));
     });
 }
@@ -116,16 +116,19 @@ void table(benchmark::State& state, const std::string& op, const std::string& ba
 // Registered at static initialisation, as BENCHMARK() does, with names built
 // from the ISAs this CPU has. Scalar runs 1 thread, OpenCL PoCL's own.
 [[maybe_unused]] const bool registered = [] {
-    // msm_r0 .. msm_r2: the small windows (issue 9: no slower than before it).
-    for (const char* op : {"msm_r0", "msm_r1", "msm_r2", "msm_r8", "msm_soft", "evsm2_r8", "evsm4_r8", "msm_table",
-                           "evsm4_table"})
+    // msm_r0 .. msm_r2, evsm4_r0 .. evsm4_r2: the small windows (issue 9: no
+    // slower than before it), exact storage only.
+    for (const char* op : {"msm_r0", "msm_r1", "msm_r2", "msm_r8", "msm_soft", "evsm2_r8", "evsm4_r0", "evsm4_r1",
+                           "evsm4_r2", "evsm4_r8", "msm_table", "evsm4_table"})
         for (const Storage& s : kStorages)
             for (const std::string& backend : testing::backend_names())
                 for (int threads : {1, 2}) {
                     // EVSM has no 16-bit storage any more (see kStorages).
                     if (s.quantization == Quantization::Bits16 && std::string(op).find("evsm") == 0) continue;
                     if ((backend == "scalar" || backend == "opencl") && threads == 2) continue;
-                    const bool small = std::string(op).compare(0, 5, "msm_r") == 0 && std::string(op) != "msm_r8";
+                    const std::string name_op = op;
+                    const bool small = (name_op.compare(0, 5, "msm_r") == 0 || name_op.compare(0, 7, "evsm4_r") == 0) &&
+                                       name_op.back() != '8';
                     if (small && std::string(s.name) != "exact") continue;
                     const int arena = backend == "opencl" ? 0 : threads;
                     std::string name = std::string(op) + "/backend:" + backend + "/precision:" + s.name +

@@ -266,28 +266,19 @@ PN_FN pn_int sat_corner_index(pn_dims t, pn_int x, pn_int y)
     return y * t.pitch + x - 1;
 }
 
-/* Sum over the texels [x0, x1) x [y0, y1) of one plane. */
-PN_FN pn_float sat_box_sum_float(PN_GLOBAL const float* plane, pn_dims t, pn_int x0, pn_int x1, pn_int y0,
-                                 pn_int y1)
-{
-    const pn_float s00 = pn_gather(plane, sat_corner_index(t, x0, y0));
-    const pn_float s10 = pn_gather(plane, sat_corner_index(t, x1, y0));
-    const pn_float s01 = pn_gather(plane, sat_corner_index(t, x0, y1));
-    const pn_float s11 = pn_gather(plane, sat_corner_index(t, x1, y1));
-    return (s11 - s01) - (s10 - s00);
+/* Sum over the texels [x0, x1) x [y0, y1) of one plane; on a uint table
+ * the wrapped difference, exact while the true sum is below 2^32. */
+#define PN_SAT_BOX_SUM(variant, T)                                                                            \
+PN_FN pn_sum_##variant sat_box_sum_##variant(PN_GLOBAL const T* plane, pn_dims t, pn_int x0, pn_int x1,       \
+                                             pn_int y0, pn_int y1)                                            \
+{                                                                                                             \
+    const pn_sum_##variant s00 = pn_sum_gather_##variant(plane, sat_corner_index(t, x0, y0));                 \
+    const pn_sum_##variant s10 = pn_sum_gather_##variant(plane, sat_corner_index(t, x1, y0));                 \
+    const pn_sum_##variant s01 = pn_sum_gather_##variant(plane, sat_corner_index(t, x0, y1));                 \
+    const pn_sum_##variant s11 = pn_sum_gather_##variant(plane, sat_corner_index(t, x1, y1));                 \
+    return (s11 - s01) - (s10 - s00);                                                                         \
 }
-
-/* The same over a uint table: the wrapped difference, exact while the true
- * sum is below 2^32. */
-PN_FN pn_uint sat_box_sum_wrapped(PN_GLOBAL const uint* plane, pn_dims t, pn_int x0, pn_int x1, pn_int y0,
-                                  pn_int y1)
-{
-    const pn_uint s00 = pn_ugather(plane, sat_corner_index(t, x0, y0));
-    const pn_uint s10 = pn_ugather(plane, sat_corner_index(t, x1, y0));
-    const pn_uint s01 = pn_ugather(plane, sat_corner_index(t, x0, y1));
-    const pn_uint s11 = pn_ugather(plane, sat_corner_index(t, x1, y1));
-    return (s11 - s01) - (s10 - s00);
-}
+PN_TABLE_VARIANTS(PN_SAT_BOX_SUM)
 
 /* The same over a pair plane: both limbs of the four corners, one 64-bit
  * gather element per corner and lane. */
@@ -319,10 +310,10 @@ PN_FN pn_double sat_limb_box_sum(PN_GLOBAL const uint* table, pn_dims t, int lim
 {
     pn_uint s[3];
     if (limbs == 1) {
-        s[0] = sat_box_sum_wrapped(PN_PLANE(table, t, k), t, x0, x1, y0, y1);
+        s[0] = sat_box_sum_exact(PN_PLANE(table, t, k), t, x0, x1, y0, y1);
     } else {
         sat_box_sum_pair(PN_PLANE(table, t, k * limbs), t, x0, x1, y0, y1, &s[0], &s[1]);
-        if (limbs == 3) s[2] = sat_box_sum_wrapped(PN_PLANE(table, t, k * limbs + 2), t, x0, x1, y0, y1);
+        if (limbs == 3) s[2] = sat_box_sum_exact(PN_PLANE(table, t, k * limbs + 2), t, x0, x1, y0, y1);
     }
     pn_double total = 0.0;
     for (int l = 0; l < limbs; ++l) {
