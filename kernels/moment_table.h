@@ -134,10 +134,30 @@ PN_FN void sat_limbs(pn_double v, int limbs, pn_uint* out)
     }
 }
 
+/* sat_limbs(z, 2, out) for the depth itself (z in [0, 1] as read), at the
+ * width of a float batch instead of two double batches: the same integers,
+ * q = floor(z 2^32 + 1/2) split at 2^16, every step exact in float.
+ * t = z 2^32 is a power-of-two scaling; t - floor(t) is exact (t >= 2^23 is
+ * already an integer, and then no carry is added); below that floor(t) + 1
+ * <= 2^23 is exact; l0 = floor(q 2^-16), and q - l0 2^16, an integer below
+ * 2^16, is the exact difference of two floats. Ties round up, as in sat_limbs. */
+PN_FN void sat_depth_limbs2(pn_float z, pn_uint* out)
+{
+    const pn_float t = z * 4294967296.0f;
+    const pn_float whole = pn_floor(t);
+    const pn_float q = pn_select(t - whole >= 0.5f, whole + 1.0f, whole);
+    const pn_float l0 = pn_floor(q * (1.0f / 65536.0f));
+    out[0] = pn_float_to_uint(l0);
+    out[1] = pn_float_to_uint(q - l0 * 65536.0f);
+}
+
+/* `depth_in_float`: value 0 is the depth itself with 2 limbs (a VSM table),
+ * whose limbs sat_depth_limbs2 forms at float width (measured:
+ * docs/moment_table.md); the other values go through double. */
 PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                           PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
-                          PN_GLOBAL int* bad_rows, const SatParams p, int moments, int limbs, int x0, int x1,
-                          int y0, int y1)
+                          PN_GLOBAL int* bad_rows, const SatParams p, int moments, int limbs, int depth_in_float,
+                          int x0, int x1, int y0, int y1)
 {
     const int planes = moments * limbs;
     for (int y = y0; y < y1; ++y) {
@@ -151,7 +171,8 @@ PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
             pn_double v[4];
             sat_texel_values(z, p, moments, v);
             pn_uint q[PN_MAX_PLANES];
-            for (int k = 0; k < moments; ++k) sat_limbs(v[k], limbs, q + k * limbs);
+            if (depth_in_float) sat_depth_limbs2(pn_clamp(z, 0.0f, 1.0f), q);
+            for (int k = depth_in_float; k < moments; ++k) sat_limbs(v[k], limbs, q + k * limbs);
             pn_uint sum[PN_MAX_PLANES];
             for (int k = 0; k < planes; ++k) {
                 PN_GLOBAL uint* column = PN_PLANE(columns, p.columns, k);
@@ -179,14 +200,17 @@ PN_FN void sat_block_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                            PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
                            PN_GLOBAL int* bad_rows, const SatParams p, int x0, int x1, int y0, int y1)
 {
-    if (p.moments == 2 && p.limbs == 2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, x0, x1, y0, y1);
+    const int powers = p.encoding == PN_TABLE_POWERS;
+    if (p.moments == 2 && p.limbs == 2 && powers)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, 1, x0, x1, y0, y1);
+    else if (p.moments == 2 && p.limbs == 2)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, 0, x0, x1, y0, y1);
     else if (p.moments == 4 && p.limbs == 2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 2, x0, x1, y0, y1);
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 2, 0, x0, x1, y0, y1);
     else if (p.moments == 2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 3, x0, x1, y0, y1);
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 3, 0, x0, x1, y0, y1);
     else
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 3, x0, x1, y0, y1);
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 3, 0, x0, x1, y0, y1);
 }
 
 /* Banded schedule, pass 1: band `pn_task` of `band_height` rows becomes a
