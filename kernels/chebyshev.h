@@ -52,6 +52,22 @@ PN_FN Receiver load_checked_receiver(PN_GLOBAL const float* receivers, pn_dims d
     return r;
 }
 
+/* The opening every moment-table lookup entry shares (vsm, vssm, msm,
+ * msm_soft, evsm; each in both PN_TABLE_VARIANTS): the arguments -- the table
+ * of element type T, the receivers' planes u, v, z, the visibility plane, the
+ * bad-row flags, then the method's parameters `p` -- and the first statement,
+ * which reads and checks the strip's receivers into `r`; PN_LOOKUP_STORE
+ * writes the strip's visibility. Macros, because an argument list cannot be a
+ * function; each entry keeps its own `PN_KERNEL void NAME_##variant(` line,
+ * which the OpenCL embed step reads (cmake/embed_kernels.cmake). */
+#define PN_LOOKUP_ARGS(T, Params)                                                                        \
+    PN_GLOBAL const T* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out, PN_GLOBAL int* bad_rows, \
+        const Params p, PN_PIXEL_ARGS
+#define PN_LOOKUP_BEGIN(r)                    \
+    PN_PIXEL_BEGIN(p.out.width, p.out.height); \
+    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows)
+#define PN_LOOKUP_STORE(visibility) pn_store(out, p.out, pn_x, pn_y, visibility)
+
 PN_FN pn_double chebyshev_upper_bound(DepthMoments m, pn_double z, double min_variance)
 {
     const pn_double variance = pn_dmax(m.mean_sq - m.mean * m.mean, min_variance);

@@ -120,6 +120,23 @@
  * of kernels/kernel_table.h. */
 #define PN_TABLE_VARIANTS(M) M(float, float) M(exact, uint)
 
+/* The lane vocabulary of each variant's sums, so that a body over a table's
+ * sums (a scan, a box query) is written once in such a macro: its lane type
+ * pn_sum_##variant and pn_sum_load_, _store_, _gather_, _scan_, _last_##variant
+ * (pn_load / pn_uload and so on; the uint ones wrap). */
+typedef pn_float pn_sum_float;
+typedef pn_uint pn_sum_exact;
+#define pn_sum_load_float pn_load
+#define pn_sum_load_exact pn_uload
+#define pn_sum_store_float pn_store
+#define pn_sum_store_exact pn_ustore
+#define pn_sum_gather_float pn_gather
+#define pn_sum_gather_exact pn_ugather
+#define pn_sum_scan_float pn_scan_add
+#define pn_sum_scan_exact pn_uscan_add
+#define pn_sum_last_float pn_last
+#define pn_sum_last_exact pn_ulast
+
 /* Linear step: 0 at or below lo, 1 at or above hi, linear between. Used for
  * light-bleeding reduction (Lauritzen, GPU Gems 3 ch. 8). Requires lo < hi. */
 PN_FN pn_float pn_linstep(float lo, float hi, pn_float v)

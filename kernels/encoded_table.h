@@ -36,59 +36,42 @@ PN_FN pn_uint encoded_step(pn_float v)
     return pn_float_to_uint(pn_floor(pn_clamp(v, 0.0f, 1.0f) * PN_QUANTIZE_STEPS + 0.5f));
 }
 
-/* Rows [y0, y1) of one band, float table. */
-PN_FN void encoded_band_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table, PN_GLOBAL float* columns,
-                              PN_GLOBAL int* bad_rows, const EncodedSatParams p, int band, int y0, int y1)
-{
-    for (int y = y0; y < y1; ++y) {
-        pn_float row_sum[4];
-        for (int k = 0; k < p.channels; ++k) row_sum[k] = 0.0f;
-        pn_mask bad = sat_depth_outside(0.0f);
-        PN_FOR_STRIPS(x, 0, p.depth.width)
-        {
-            const pn_float z = pn_load(depth, p.depth, x, y);
-            bad = pn_or(bad, sat_depth_outside(z));
-            pn_float v[4];
-            encode_texel(pn_clamp(z, 0.0f, 1.0f), p, v);
-            for (int k = 0; k < p.channels; ++k) {
-                PN_GLOBAL float* column = PN_PLANE(columns, p.columns, k);
-                const pn_float row_prefix = pn_scan_add(v[k]) + row_sum[k];
-                const pn_float sum = pn_load(column, p.columns, x, band) + row_prefix;
-                pn_store(column, p.columns, x, band, sum);
-                pn_store(PN_PLANE(table, p.table, k), p.table, x, y + 1, sum);
-                row_sum[k] = pn_last(row_prefix);
-            }
-        }
-        pn_flag_any(bad_rows, y, bad);
-    }
-}
+/* A texel's encoded value v_k as the table sums it: v_k itself (float), or
+ * its 16-bit step (exact). */
+PN_FN pn_float encoded_summand_float(pn_float v) { return v; }
+PN_FN pn_uint encoded_summand_exact(pn_float v) { return encoded_step(v); }
 
-/* The same, exact table. */
-PN_FN void encoded_band_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table, PN_GLOBAL uint* columns,
-                              PN_GLOBAL int* bad_rows, const EncodedSatParams p, int band, int y0, int y1)
-{
-    for (int y = y0; y < y1; ++y) {
-        pn_uint row_sum[4];
-        for (int k = 0; k < p.channels; ++k) row_sum[k] = 0u;
-        pn_mask bad = sat_depth_outside(0.0f);
-        PN_FOR_STRIPS(x, 0, p.depth.width)
-        {
-            const pn_float z = pn_load(depth, p.depth, x, y);
-            bad = pn_or(bad, sat_depth_outside(z));
-            pn_float v[4];
-            encode_texel(pn_clamp(z, 0.0f, 1.0f), p, v);
-            for (int k = 0; k < p.channels; ++k) {
-                PN_GLOBAL uint* column = PN_PLANE(columns, p.columns, k);
-                const pn_uint row_prefix = pn_uscan_add(encoded_step(v[k])) + row_sum[k];
-                const pn_uint sum = pn_uload(column, p.columns, x, band) + row_prefix;
-                pn_ustore(column, p.columns, x, band, sum);
-                pn_ustore(PN_PLANE(table, p.table, k), p.table, x, y + 1, sum);
-                row_sum[k] = pn_ulast(row_prefix);
-            }
-        }
-        pn_flag_any(bad_rows, y, bad);
-    }
+/* Rows [y0, y1) of one band, either variant: per channel, the strip's
+ * in-register prefix sum plus the row's carried sum, plus the band's running
+ * column sums (row `band` of `columns`). */
+#define PN_ENCODED_BAND(variant, T)                                                                                \
+PN_FN void encoded_band_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T* table, PN_GLOBAL T* columns,          \
+                                  PN_GLOBAL int* bad_rows, const EncodedSatParams p, int band, int y0, int y1)     \
+{                                                                                                                  \
+    for (int y = y0; y < y1; ++y) {                                                                                \
+        pn_sum_##variant row_sum[4];                                                                               \
+        for (int k = 0; k < p.channels; ++k) row_sum[k] = (T)0;                                                    \
+        pn_mask bad = sat_depth_outside(0.0f);                                                                     \
+        PN_FOR_STRIPS(x, 0, p.depth.width)                                                                         \
+        {                                                                                                          \
+            const pn_float z = pn_load(depth, p.depth, x, y);                                                      \
+            bad = pn_or(bad, sat_depth_outside(z));                                                                \
+            pn_float v[4];                                                                                         \
+            encode_texel(pn_clamp(z, 0.0f, 1.0f), p, v);                                                           \
+            for (int k = 0; k < p.channels; ++k) {                                                                 \
+                PN_GLOBAL T* column = PN_PLANE(columns, p.columns, k);                                             \
+                const pn_sum_##variant row_prefix =                                                                \
+                    pn_sum_scan_##variant(encoded_summand_##variant(v[k])) + row_sum[k];                           \
+                const pn_sum_##variant sum = pn_sum_load_##variant(column, p.columns, x, band) + row_prefix;      \
+                pn_sum_store_##variant(column, p.columns, x, band, sum);                                           \
+                pn_sum_store_##variant(PN_PLANE(table, p.table, k), p.table, x, y + 1, sum);                      \
+                row_sum[k] = pn_sum_last_##variant(row_prefix);                                                    \
+            }                                                                                                      \
+        }                                                                                                          \
+        pn_flag_any(bad_rows, y, bad);                                                                             \
+    }                                                                                                              \
 }
+PN_TABLE_VARIANTS(PN_ENCODED_BAND)
 
 /* Pass 1: band `pn_task` becomes a table of its own. Lanes past the width
  * add encoded zeros to the row sums, but only after the row's last pixel. */

@@ -66,16 +66,13 @@ PN_FN void evsm_box_means_exact(PN_GLOBAL const uint* table, const MomentParams 
         mean[k] = sat_limb_box_sum(table, p.table, p.limbs, k, sat_limb_unit(p.limbs), w.x0, w.x1, w.y0, w.y1) / area;
 }
 
-#define PN_EVSM_KERNEL(variant, T)                                                                              \
-PN_KERNEL void evsm_##variant(PN_GLOBAL const T* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out, \
-                              PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)                     \
-{                                                                                                               \
-    PN_PIXEL_BEGIN(p.out.width, p.out.height);                                                                  \
-    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);                     \
-    const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);                                            \
-    pn_double mean[4];                                                                                          \
-    evsm_box_means_##variant(table, p, w, mean);                                                                \
-    pn_store(out, p.out, pn_x, pn_y, evsm_visibility(mean, r.z, p));                                            \
+#define PN_EVSM_KERNEL(variant, T)                                    \
+PN_KERNEL void evsm_##variant(PN_LOOKUP_ARGS(T, MomentParams))        \
+{                                                                     \
+    PN_BOX_LOOKUP_BEGIN(r, w);                                        \
+    pn_double mean[4];                                                \
+    evsm_box_means_##variant(table, p, w, mean);                      \
+    PN_LOOKUP_STORE(evsm_visibility(mean, r.z, p));                   \
 }
 PN_TABLE_VARIANTS(PN_EVSM_KERNEL)
 

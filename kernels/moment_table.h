@@ -134,10 +134,30 @@ PN_FN void sat_limbs(pn_double v, int limbs, pn_uint* out)
     }
 }
 
+/* sat_limbs(z, 2, out) for the depth itself (z in [0, 1] as read), at the
+ * width of a float batch instead of two double batches: the same integers,
+ * q = floor(z 2^32 + 1/2) split at 2^16, every step exact in float.
+ * t = z 2^32 is a power-of-two scaling; t - floor(t) is exact (t >= 2^23 is
+ * already an integer, and then no carry is added); below that floor(t) + 1
+ * <= 2^23 is exact; l0 = floor(q 2^-16), and q - l0 2^16, an integer below
+ * 2^16, is the exact difference of two floats. Ties round up, as in sat_limbs. */
+PN_FN void sat_depth_limbs2(pn_float z, pn_uint* out)
+{
+    const pn_float t = z * 4294967296.0f;
+    const pn_float whole = pn_floor(t);
+    const pn_float q = pn_select(t - whole >= 0.5f, whole + 1.0f, whole);
+    const pn_float l0 = pn_floor(q * (1.0f / 65536.0f));
+    out[0] = pn_float_to_uint(l0);
+    out[1] = pn_float_to_uint(q - l0 * 65536.0f);
+}
+
+/* `depth_in_float`: value 0 is the depth itself with 2 limbs (a VSM table),
+ * whose limbs sat_depth_limbs2 forms at float width (measured:
+ * docs/moment_table.md); the other values go through double. */
 PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                           PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
-                          PN_GLOBAL int* bad_rows, const SatParams p, int moments, int limbs, int x0, int x1,
-                          int y0, int y1)
+                          PN_GLOBAL int* bad_rows, const SatParams p, int moments, int limbs, int depth_in_float,
+                          int x0, int x1, int y0, int y1)
 {
     const int planes = moments * limbs;
     for (int y = y0; y < y1; ++y) {
@@ -151,7 +171,8 @@ PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
             pn_double v[4];
             sat_texel_values(z, p, moments, v);
             pn_uint q[PN_MAX_PLANES];
-            for (int k = 0; k < moments; ++k) sat_limbs(v[k], limbs, q + k * limbs);
+            if (depth_in_float) sat_depth_limbs2(pn_clamp(z, 0.0f, 1.0f), q);
+            for (int k = depth_in_float; k < moments; ++k) sat_limbs(v[k], limbs, q + k * limbs);
             pn_uint sum[PN_MAX_PLANES];
             for (int k = 0; k < planes; ++k) {
                 PN_GLOBAL uint* column = PN_PLANE(columns, p.columns, k);
@@ -179,14 +200,17 @@ PN_FN void sat_block_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                            PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
                            PN_GLOBAL int* bad_rows, const SatParams p, int x0, int x1, int y0, int y1)
 {
-    if (p.moments == 2 && p.limbs == 2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, x0, x1, y0, y1);
+    const int powers = p.encoding == PN_TABLE_POWERS;
+    if (p.moments == 2 && p.limbs == 2 && powers)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, 1, x0, x1, y0, y1);
+    else if (p.moments == 2 && p.limbs == 2)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, 0, x0, x1, y0, y1);
     else if (p.moments == 4 && p.limbs == 2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 2, x0, x1, y0, y1);
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 2, 0, x0, x1, y0, y1);
     else if (p.moments == 2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 3, x0, x1, y0, y1);
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 3, 0, x0, x1, y0, y1);
     else
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 3, x0, x1, y0, y1);
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 3, 0, x0, x1, y0, y1);
 }
 
 /* Banded schedule, pass 1: band `pn_task` of `band_height` rows becomes a
@@ -266,28 +290,19 @@ PN_FN pn_int sat_corner_index(pn_dims t, pn_int x, pn_int y)
     return y * t.pitch + x - 1;
 }
 
-/* Sum over the texels [x0, x1) x [y0, y1) of one plane. */
-PN_FN pn_float sat_box_sum_float(PN_GLOBAL const float* plane, pn_dims t, pn_int x0, pn_int x1, pn_int y0,
-                                 pn_int y1)
-{
-    const pn_float s00 = pn_gather(plane, sat_corner_index(t, x0, y0));
-    const pn_float s10 = pn_gather(plane, sat_corner_index(t, x1, y0));
-    const pn_float s01 = pn_gather(plane, sat_corner_index(t, x0, y1));
-    const pn_float s11 = pn_gather(plane, sat_corner_index(t, x1, y1));
-    return (s11 - s01) - (s10 - s00);
+/* Sum over the texels [x0, x1) x [y0, y1) of one plane; on a uint table
+ * the wrapped difference, exact while the true sum is below 2^32. */
+#define PN_SAT_BOX_SUM(variant, T)                                                                            \
+PN_FN pn_sum_##variant sat_box_sum_##variant(PN_GLOBAL const T* plane, pn_dims t, pn_int x0, pn_int x1,       \
+                                             pn_int y0, pn_int y1)                                            \
+{                                                                                                             \
+    const pn_sum_##variant s00 = pn_sum_gather_##variant(plane, sat_corner_index(t, x0, y0));                 \
+    const pn_sum_##variant s10 = pn_sum_gather_##variant(plane, sat_corner_index(t, x1, y0));                 \
+    const pn_sum_##variant s01 = pn_sum_gather_##variant(plane, sat_corner_index(t, x0, y1));                 \
+    const pn_sum_##variant s11 = pn_sum_gather_##variant(plane, sat_corner_index(t, x1, y1));                 \
+    return (s11 - s01) - (s10 - s00);                                                                         \
 }
-
-/* The same over a uint table: the wrapped difference, exact while the true
- * sum is below 2^32. */
-PN_FN pn_uint sat_box_sum_wrapped(PN_GLOBAL const uint* plane, pn_dims t, pn_int x0, pn_int x1, pn_int y0,
-                                  pn_int y1)
-{
-    const pn_uint s00 = pn_ugather(plane, sat_corner_index(t, x0, y0));
-    const pn_uint s10 = pn_ugather(plane, sat_corner_index(t, x1, y0));
-    const pn_uint s01 = pn_ugather(plane, sat_corner_index(t, x0, y1));
-    const pn_uint s11 = pn_ugather(plane, sat_corner_index(t, x1, y1));
-    return (s11 - s01) - (s10 - s00);
-}
+PN_TABLE_VARIANTS(PN_SAT_BOX_SUM)
 
 /* The same over a pair plane: both limbs of the four corners, one 64-bit
  * gather element per corner and lane. */
@@ -319,10 +334,10 @@ PN_FN pn_double sat_limb_box_sum(PN_GLOBAL const uint* table, pn_dims t, int lim
 {
     pn_uint s[3];
     if (limbs == 1) {
-        s[0] = sat_box_sum_wrapped(PN_PLANE(table, t, k), t, x0, x1, y0, y1);
+        s[0] = sat_box_sum_exact(PN_PLANE(table, t, k), t, x0, x1, y0, y1);
     } else {
         sat_box_sum_pair(PN_PLANE(table, t, k * limbs), t, x0, x1, y0, y1, &s[0], &s[1]);
-        if (limbs == 3) s[2] = sat_box_sum_wrapped(PN_PLANE(table, t, k * limbs + 2), t, x0, x1, y0, y1);
+        if (limbs == 3) s[2] = sat_box_sum_exact(PN_PLANE(table, t, k * limbs + 2), t, x0, x1, y0, y1);
     }
     pn_double total = 0.0;
     for (int l = 0; l < limbs; ++l) {

@@ -347,16 +347,13 @@ PN_FN MsmPrecision msm_box_means_exact(PN_GLOBAL const uint* table, const Moment
     return msm_exact_precision(p);
 }
 
-#define PN_MSM_KERNEL(variant, T)                                                                                 \
-PN_KERNEL void msm_##variant(PN_GLOBAL const T* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,    \
-                             PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)                        \
-{                                                                                                                 \
-    PN_PIXEL_BEGIN(p.out.width, p.out.height);                                                                    \
-    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);                       \
-    const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);                                              \
-    pn_double mean[4];                                                                                            \
-    const MsmPrecision precision = msm_box_means_##variant(table, p, w, mean);                                    \
-    pn_store(out, p.out, pn_x, pn_y, msm_visibility(msm_moments_from_means(mean, p.storage), r.z, precision, p)); \
+#define PN_MSM_KERNEL(variant, T)                                                                            \
+PN_KERNEL void msm_##variant(PN_LOOKUP_ARGS(T, MomentParams))                                                \
+{                                                                                                            \
+    PN_BOX_LOOKUP_BEGIN(r, w);                                                                               \
+    pn_double mean[4];                                                                                       \
+    const MsmPrecision precision = msm_box_means_##variant(table, p, w, mean);                               \
+    PN_LOOKUP_STORE(msm_visibility(msm_moments_from_means(mean, p.storage), r.z, precision, p));             \
 }
 PN_TABLE_VARIANTS(PN_MSM_KERNEL)
 

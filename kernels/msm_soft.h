@@ -145,17 +145,15 @@ PN_FN pn_float msm_soft_visibility(WindowMoments filter_moments, pn_double z_f, 
 }
 
 #define PN_MSM_SOFT_KERNEL(variant, T)                                                                              \
-PN_KERNEL void msm_soft_##variant(PN_GLOBAL const T* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out, \
-                                  PN_GLOBAL int* bad_rows, const MomentParams p, PN_PIXEL_ARGS)                     \
+PN_KERNEL void msm_soft_##variant(PN_LOOKUP_ARGS(T, MomentParams))                                              \
 {                                                                                                                   \
-    PN_PIXEL_BEGIN(p.out.width, p.out.height);                                                                      \
-    const Receiver raw = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);                       \
+    PN_LOOKUP_BEGIN(raw);                                                                                           \
     const pn_double z_f = pn_to_double(raw.z) - (double)p.depth_bias;                                               \
     const Receiver r = msm_soft_receiver(raw, p);                                                                   \
     pn_mask lit;                                                                                                    \
     const WindowMoments search = msm_soft_moments_##variant(table, vssm_search_window(msm_soft_geometry(p), r), p); \
     const FractionalWindow filter = msm_soft_filter_window(search, r, z_f, p, &lit);                                \
-    pn_store(out, p.out, pn_x, pn_y, msm_soft_visibility(msm_soft_moments_##variant(table, filter, p), z_f, lit));  \
+    PN_LOOKUP_STORE(msm_soft_visibility(msm_soft_moments_##variant(table, filter, p), z_f, lit));                   \
 }
 PN_TABLE_VARIANTS(PN_MSM_SOFT_KERNEL)
 

@@ -266,27 +266,27 @@ PN_FN void sdf_march_end(PN_GLOBAL float* out, const SdfParams p, int x, int y, 
     if (p.write_steps) pn_store(PN_PLANE(out, p.out, 1), p.out, x, y, m->steps);
 }
 
-/* The two entries differ only in the distance they march through. */
+/* The two entries differ only in the distance they march through: the
+ * march of both, `distance(source, p, point)` per step. */
+#define PN_SDF_MARCH(distance, source)                                                          \
+    PN_PIXEL_BEGIN(p.out.width, p.out.height);                                                  \
+    SdfMarch m = sdf_march_begin(receivers, normals, bad_rows, p, pn_x, pn_y, pn_active);       \
+    for (int i = 0; i < p.max_steps && pn_any(m.active); ++i)                                   \
+        sdf_march_step(&m, distance(source, p, sdf_march_point(&m)), p);                        \
+    sdf_march_end(out, p, pn_x, pn_y, &m)
+
 PN_KERNEL void sdf_grid(PN_GLOBAL const float* grid, PN_GLOBAL const float* receivers,
                         PN_GLOBAL const float* normals, PN_GLOBAL float* out, PN_GLOBAL int* bad_rows,
                         const SdfParams p, PN_PIXEL_ARGS)
 {
-    PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    SdfMarch m = sdf_march_begin(receivers, normals, bad_rows, p, pn_x, pn_y, pn_active);
-    for (int i = 0; i < p.max_steps && pn_any(m.active); ++i)
-        sdf_march_step(&m, sdf_grid_distance(grid, p, sdf_march_point(&m)), p);
-    sdf_march_end(out, p, pn_x, pn_y, &m);
+    PN_SDF_MARCH(sdf_grid_distance, grid);
 }
 
 PN_KERNEL void sdf_analytic(PN_GLOBAL const float* prims, PN_GLOBAL const float* receivers,
                             PN_GLOBAL const float* normals, PN_GLOBAL float* out, PN_GLOBAL int* bad_rows,
                             const SdfParams p, PN_PIXEL_ARGS)
 {
-    PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    SdfMarch m = sdf_march_begin(receivers, normals, bad_rows, p, pn_x, pn_y, pn_active);
-    for (int i = 0; i < p.max_steps && pn_any(m.active); ++i)
-        sdf_march_step(&m, sdf_analytic_distance(prims, p, sdf_march_point(&m)), p);
-    sdf_march_end(out, p, pn_x, pn_y, &m);
+    PN_SDF_MARCH(sdf_analytic_distance, prims);
 }
 
 #endif

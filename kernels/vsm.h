@@ -28,15 +28,18 @@ PN_FN TexelWindow texel_window(pn_dims t, pn_float u, pn_float v, int radius)
     return win;
 }
 
-#define PN_VSM_KERNEL(variant, T)                                                                              \
-PN_KERNEL void vsm_##variant(PN_GLOBAL const T* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out, \
-                             PN_GLOBAL int* bad_rows, const ChebyshevParams p, PN_PIXEL_ARGS)                  \
-{                                                                                                              \
-    PN_PIXEL_BEGIN(p.out.width, p.out.height);                                                                 \
-    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);                    \
-    const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius);                                           \
-    const DepthMoments m = box_moments_##variant(table, p.table, p.limbs, w.x0, w.x1, w.y0, w.y1);             \
-    pn_store(out, p.out, pn_x, pn_y, chebyshev_visibility(m, r.z, p.min_variance, p.bleed));                   \
+/* The opening of the box-window lookups (vsm, msm, evsm): PN_LOOKUP_BEGIN
+ * (kernels/chebyshev.h), then the receiver's window `w`. */
+#define PN_BOX_LOOKUP_BEGIN(r, w) \
+    PN_LOOKUP_BEGIN(r);           \
+    const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius)
+
+#define PN_VSM_KERNEL(variant, T)                                                                  \
+PN_KERNEL void vsm_##variant(PN_LOOKUP_ARGS(T, ChebyshevParams))                                   \
+{                                                                                                  \
+    PN_BOX_LOOKUP_BEGIN(r, w);                                                                     \
+    const DepthMoments m = box_moments_##variant(table, p.table, p.limbs, w.x0, w.x1, w.y0, w.y1); \
+    PN_LOOKUP_STORE(chebyshev_visibility(m, r.z, p.min_variance, p.bleed));                        \
 }
 PN_TABLE_VARIANTS(PN_VSM_KERNEL)
 

@@ -60,18 +60,16 @@ PN_FN FractionalWindow vssm_filter_window(const ChebyshevParams p, Receiver r, p
 }
 
 #define PN_VSSM_KERNEL(variant, T)                                                                               \
-PN_KERNEL void vssm_##variant(PN_GLOBAL const T* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,  \
-                              PN_GLOBAL int* bad_rows, const ChebyshevParams p, PN_PIXEL_ARGS)                   \
+PN_KERNEL void vssm_##variant(PN_LOOKUP_ARGS(T, ChebyshevParams))                                                \
 {                                                                                                                \
-    PN_PIXEL_BEGIN(p.out.width, p.out.height);                                                                   \
-    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows);                      \
+    PN_LOOKUP_BEGIN(r);                                                                                          \
     pn_mask lit;                                                                                                 \
     const DepthMoments search = fractional_moments_##variant(table, p.table, p.limbs, vssm_search_window(p, r)); \
     const pn_float z_occ = vssm_blocker_depth(search, r.z, p.min_variance, &lit);                                \
     const DepthMoments filter =                                                                                  \
         fractional_moments_##variant(table, p.table, p.limbs, vssm_filter_window(p, r, z_occ));                  \
     const pn_float visibility = chebyshev_visibility(filter, r.z, p.min_variance, p.bleed);                      \
-    pn_store(out, p.out, pn_x, pn_y, pn_select(lit, 1.0f, visibility));                                          \
+    PN_LOOKUP_STORE(pn_select(lit, 1.0f, visibility));                                                           \
 }
 PN_TABLE_VARIANTS(PN_VSSM_KERNEL)
 

@@ -72,6 +72,44 @@ PN_BACKEND_TEST(MomentTableTest, ExactSumsMatchBruteForce)
             }
 }
 
+// Depths where rounding to 32 bits is delicate: exact ties (k + 1/2) 2^-32,
+// their float neighbours, the carry into limb 0 at (2^16 - 1/2) 2^-32, tiny
+// and subnormal depths, 1 and just below 1. A VSM table (2 values x 2 limbs)
+// forms the depth's limbs in float (sat_depth_limbs2), z^2's in double; each
+// texel's limbs must be the double rounding's (testing::exact_limb).
+std::vector<float> rounding_edge_depths()
+{
+    std::vector<float> z{0.0f, 1.0f, std::nextafter(1.0f, 0.0f), 1e-40f, std::ldexp(1.0f, -24),
+                         std::ldexp(1.0f, -9), std::ldexp(1.0f, -16)};
+    for (double k : {0.0, 1.0, 2.0, 3.0, 65535.0, 65536.0, 1048575.0, 8388607.0}) {
+        const float tie = float(std::ldexp(k + 0.5, -32));
+        z.insert(z.end(), {tie, std::nextafter(tie, 0.0f), std::nextafter(tie, 1.0f)});
+    }
+    std::mt19937 rng(5);
+    for (int i = 0; i < 200; ++i)  // every binade from 2^-40 to 1
+        z.push_back(std::ldexp(std::uniform_real_distribution<float>(0.5f, 1.0f)(rng), -(i % 41)));
+    return z;
+}
+
+PN_BACKEND_TEST(MomentTableTest, ExactLimbsAtRoundingEdges)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    const std::vector<float> z = rounding_edge_depths();
+    const int w = 37, h = int(z.size() + w - 1) / w;
+    Image depth(w, h, 1);
+    for (int i = 0; i < w * h; ++i) depth.at(0, i % w, i / w) = z[std::size_t(i) % z.size()];
+    for (int moments : {2, 4}) {
+        MomentTable table(w, h, moments, Precision::Exact, 2);
+        build_moment_table(ctx, depth, table);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int k = 1; k <= table.planes(); ++k)
+                    ASSERT_EQ(table.exact_box_sum(k, x, x + 1, y, y + 1),
+                              testing::brute_exact_sum(depth, k, 2, x, x + 1, y, y + 1))
+                        << "depth " << depth.at(0, x, y) << " plane " << k << " moments " << moments;
+    }
+}
+
 // The pair planes' corner (0, 0) reads the two elements before their origin:
 // in a 3-limb table the last two of the previous value's limb-2 plane, its
 // last row's padding (kernels/moment_table.h, layout). Widths 15 and 31 are
