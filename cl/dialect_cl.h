@@ -19,6 +19,17 @@ typedef int pn_mask;
 
 #define PN_FN static inline
 #define PN_KERNEL kernel
+
+/* One program per kernel entry (cl/opencl_programs.h): the embed step writes
+ * every entry as PN_ENTRY(name), and the program's source starts with
+ * `#define PN_ENTRY_IS_<its entry> ~, kernel`. PN_ENTRY(name) is `kernel` for
+ * that name and PN_FN (never emitted) for every other, so PoCL compiles one
+ * kernel per program, not the family's all. The test is the preprocessor's
+ * argument-count probe: a defined PN_ENTRY_IS_name shifts `kernel` into the
+ * second place, an undefined one leaves PN_FN there. */
+#define PN_ENTRY_SECOND(first, second, ...) second
+#define PN_ENTRY_PROBE(...) PN_ENTRY_SECOND(__VA_ARGS__, PN_FN, ~)
+#define PN_ENTRY(name) PN_ENTRY_PROBE(PN_ENTRY_IS_##name)
 #define PN_GLOBAL global
 #define PN_LANES 1
 

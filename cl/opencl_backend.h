@@ -1,4 +1,4 @@
-// The OpenCL backend: its device, its programs (one per kernel family, built
+// The OpenCL backend: its device, its programs (one per kernel entry, built
 // on first use: cl/opencl_programs.h) and the launches. One class; each kernel
 // family implements its methods in its own file (cl/opencl_<family>.cpp),
 // next to its launches, all through launch<K> (cl/opencl_launch.h).
@@ -26,7 +26,7 @@ public:
     std::string description() const override;
     // The programs this context built so far (none before its first launch).
     double program_build_seconds() const override { return programs_.build_seconds(); }
-    FamilyPrograms& programs() { return programs_; }
+    KernelPrograms& programs() { return programs_; }
 
     // cl/opencl_moment_table.cpp
     void build_moment_table(const Image& depth, MomentTable& table, int* bad_rows) override;
@@ -80,7 +80,7 @@ private:
     }
 
     Runtime runtime_;
-    FamilyPrograms programs_{runtime_};
+    KernelPrograms programs_{runtime_};
 };
 
 bool has_non_cpu_device();
