@@ -19,6 +19,21 @@ typedef int pn_mask;
 
 #define PN_FN static inline
 #define PN_KERNEL kernel
+
+/* One program per kernel entry (cl/opencl_programs.h): the embed step writes
+ * every entry of the family as PN_ENTRY(name), and the program's source
+ * starts with `#define PN_ENTRY_IS_<its entry> ~, kernel`. PN_ENTRY(name) is
+ * `kernel` for that name and nothing for the family's other entries, so PoCL
+ * compiles one kernel per program, not the family's all. The others stay
+ * plain (emitted) functions, not static ones, because LLVM inlines a static
+ * helper by how many callers it has: as the vertical pass's only caller,
+ * bilateral_taps inlined differently and bilateral_vertical ran 1.4 to 1.7
+ * times slower (docs/opencl_startup.md). The test is the preprocessor's
+ * argument-count probe: a defined PN_ENTRY_IS_name shifts `kernel` into the
+ * second place, an undefined one leaves the empty argument there. */
+#define PN_ENTRY_SECOND(first, second, ...) second
+#define PN_ENTRY_PROBE(...) PN_ENTRY_SECOND(__VA_ARGS__, , ~)
+#define PN_ENTRY(name) PN_ENTRY_PROBE(PN_ENTRY_IS_##name)
 #define PN_GLOBAL global
 #define PN_LANES 1
 

@@ -1,4 +1,4 @@
-// The OpenCL backend: its device, its programs (one per kernel family, built
+// The OpenCL backend: its device, its programs (one per kernel entry, built
 // on first use: cl/opencl_programs.h) and the launches. One class: the
 // generic lookup of every lookup-shaped entry in cl/opencl_lookup.cpp, and
 // each schedule that differs (table builds, bilateral, SDF) in its family's
@@ -27,7 +27,7 @@ public:
     std::string description() const override;
     // The programs this context built so far (none before its first launch).
     double program_build_seconds() const override { return programs_.build_seconds(); }
-    FamilyPrograms& programs() { return programs_; }
+    KernelPrograms& programs() { return programs_; }
 
     // cl/opencl_lookup.cpp: every lookup-shaped entry
     void receiver_lookup(detail::KernelId kernel, const detail::LookupSource& source, const Image& receivers,
@@ -70,7 +70,7 @@ private:
     }
 
     Runtime runtime_;
-    FamilyPrograms programs_{runtime_};
+    KernelPrograms programs_{runtime_};
 };
 
 bool has_non_cpu_device();

@@ -162,7 +162,7 @@ inline int shape_argument(Tasks tasks) { return tasks.count; }
 }  // namespace launch_detail
 
 template <detail::KernelId K, class Range, class... A>
-void launch(FamilyPrograms& programs, const cl::CommandQueue& queue, Range range, const A&... args)
+void launch(KernelPrograms& programs, const cl::CommandQueue& queue, Range range, const A&... args)
 {
     using Traits = detail::KernelTraits<K>;
     static_assert(std::is_same_v<std::tuple<A...>, launch_detail::HostArguments<K>>,

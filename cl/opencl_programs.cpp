@@ -1,7 +1,5 @@
 #include "cl/opencl_programs.h"
 
-#include <string>
-
 namespace penumbra::cl_backend {
 
 using detail::KernelFamily;
@@ -11,7 +9,7 @@ using detail::KernelId;
 PN_KERNEL_FAMILIES(PN_FAMILY_SOURCE_DECLARATION)
 #undef PN_FAMILY_SOURCE_DECLARATION
 
-const char* program_source(KernelFamily family)
+const char* family_source(KernelFamily family)
 {
     static const std::array<const char*, detail::kFamilyCount> sources{
 #define PN_FAMILY_SOURCE(family) kProgramSource_##family,
@@ -21,48 +19,46 @@ const char* program_source(KernelFamily family)
     return sources[static_cast<int>(family)];
 }
 
-cl::Kernel& FamilyPrograms::kernel(KernelId id)
+// The one line that makes PN_ENTRY(name) a kernel (cl/dialect_cl.h); the
+// family source's #line markers keep the build log's lines those of the files.
+std::string program_source(KernelId id)
 {
-    build(detail::kernel_family(id));
+    return "#define PN_ENTRY_IS_" + std::string(detail::kernel_name(id)) + " ~, kernel\n" +
+           family_source(detail::kernel_family(id));
+}
+
+cl::Kernel& KernelPrograms::kernel(KernelId id)
+{
+    std::lock_guard lock(build_mutex_);
+    build_locked(id);
     return kernels_[static_cast<int>(id)];  // written once, under the lock, before built_ was set
 }
 
-void FamilyPrograms::build(KernelFamily family)
+void KernelPrograms::build_all()
 {
     std::lock_guard lock(build_mutex_);
-    build_locked(family);
-}
-
-void FamilyPrograms::build_all()
-{
-    std::lock_guard lock(build_mutex_);
-    for (int f = 0; f < detail::kFamilyCount; ++f) build_locked(static_cast<KernelFamily>(f));
+    for (int k = 0; k < detail::kKernelCount; ++k) build_locked(static_cast<KernelId>(k));
 }
 
 // Runtime::build() is not reentrant (it records its timing): the lock covers it.
-void FamilyPrograms::build_locked(KernelFamily family)
+void KernelPrograms::build_locked(KernelId id)
 {
-    const int f = static_cast<int>(family);
-    if (built_[f]) return;
-    programs_[f] = runtime_.build(program_source(family), kProgramOptions);
+    const int k = static_cast<int>(id);
+    if (built_[k]) return;
+    const cl::Program program = runtime_.build(program_source(id), kProgramOptions);
     build_seconds_ += runtime_.last_build_seconds();
-    translate_cl_errors([&] {
-        for (int k = 0; k < detail::kKernelCount; ++k) {
-            const auto id = static_cast<KernelId>(k);
-            if (detail::kernel_family(id) == family)
-                kernels_[k] = cl::Kernel(programs_[f], std::string(detail::kernel_name(id)).c_str());
-        }
-    });
-    built_[f] = true;
+    const std::string name(detail::kernel_name(id));
+    kernels_[k] = translate_cl_errors([&] { return cl::Kernel(program, name.c_str()); });
+    built_[k] = true;
 }
 
-bool FamilyPrograms::built(KernelFamily family) const
+bool KernelPrograms::built(KernelId id) const
 {
     std::lock_guard lock(build_mutex_);
-    return built_[static_cast<int>(family)];
+    return built_[static_cast<int>(id)];
 }
 
-int FamilyPrograms::programs_built() const
+int KernelPrograms::programs_built() const
 {
     std::lock_guard lock(build_mutex_);
     int count = 0;
@@ -70,7 +66,7 @@ int FamilyPrograms::programs_built() const
     return count;
 }
 
-double FamilyPrograms::build_seconds() const
+double KernelPrograms::build_seconds() const
 {
     std::lock_guard lock(build_mutex_);
     return build_seconds_;

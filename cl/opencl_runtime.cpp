@@ -296,6 +296,22 @@ DeviceList list_devices()
 
 // ---- runtime ------------------------------------------------------------------
 
+// One cl::Context per device for the whole process, never released. PoCL frees
+// its compiler state (the kernel library it links every program with) with
+// the last context of the process: 0.23 s after a build from source, measured
+// (docs/opencl_startup.md), which the process's exit does for nothing. A later
+// Runtime on the device reuses the context and the library PoCL has loaded.
+static cl::Context process_context(const cl::Device& device)
+{
+    static auto* mutex = new std::mutex;  // both never destroyed, on purpose
+    static auto* contexts = new std::vector<std::pair<cl_device_id, cl::Context>>;
+    std::lock_guard lock(*mutex);
+    for (const auto& [id, context] : *contexts)
+        if (id == device()) return context;
+    contexts->emplace_back(device(), cl::Context(device));
+    return contexts->back().second;
+}
+
 Runtime::Runtime(DeviceChoice choice, ProgramCache cache) : cache_(std::move(cache))
 {
     const Discovery discovery = discover();
@@ -310,7 +326,7 @@ Runtime::Runtime(DeviceChoice choice, ProgramCache cache) : cache_(std::move(cac
                     "device '" + info_.device_name + "' has no double precision (cl_khr_fp64), which the moment "
                     "kernels need; choose another device or --backend simd");
     translate_cl_errors([&] {
-        context_ = cl::Context(device_);
+        context_ = process_context(device_);
         queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE);
     });
 }

@@ -73,7 +73,9 @@ enum class DeviceChoice {
     Any,         // a GPU or accelerator if there is one, else a CPU device (PoCL)
 };
 
-// One device with its context and in-order queue. Profiling is enabled on the
+// One device with its context and in-order queue. The context is the device's
+// one context of the process, kept until the process exits (opencl_runtime.cpp
+// says why); the queue is this runtime's own. Profiling is enabled on the
 // queue so launches can be timed by their events; it costs nothing measurable on
 // PoCL. Copies share the underlying OpenCL objects (they are reference counted).
 // Not safe to build from two threads at once (build() records its timing).

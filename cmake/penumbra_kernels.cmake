@@ -1,7 +1,7 @@
 # The kernel descriptions and the two ways they are compiled.
 #
 # PENUMBRA_KERNEL_FILES is the one ordered list of descriptions: each OpenCL
-# program (one per kernel family, below) concatenates the files it needs in
+# family source (below) concatenates the files it needs in
 # this order (after the OpenCL binding), and the CPU translation units include
 # them all in the same order (after the xsimd or scalar binding). A
 # description may use what an earlier one defines.
@@ -32,10 +32,11 @@ foreach(f IN LISTS PENUMBRA_KERNEL_FILES)
 endforeach()
 file(CONFIGURE OUTPUT ${_gen}/penumbra_kernel_includes.h CONTENT "${_includes}")
 
-# OpenCL side: one program per family of PN_KERNEL_FAMILIES
-# (kernels/kernel_table.h), each its own string literal, built on first use of
-# one of its kernels (cl/opencl_backend.cpp) so that a run of one method
-# compiles only what that method needs. A program is the prelude (the shared
+# OpenCL side: one source per family of PN_KERNEL_FAMILIES
+# (kernels/kernel_table.h), each its own string literal, from which the host
+# builds one program per entry on that entry's first launch
+# (cl/opencl_programs.h), so that a run of one method compiles only the
+# kernels it launches. A family source is the prelude (the shared
 # parameter layouts first: the binding's accessors take pn_dims; then the
 # binding and the dialect) and the description files below, in the order of
 # PENUMBRA_KERNEL_FILES. A family lists the files whose kernels it owns and

@@ -1,8 +1,9 @@
 /* The kernel table: every entry point of the kernel descriptions, once.
  *
  * X(family, name, shape, Params, (buffers...)) per entry, where
- *  - family: the OpenCL program the entry belongs to (one program per family,
- *    built on first use) and the CPU backend's file for it;
+ *  - family: the OpenCL source the entry's program is built from (the files
+ *    the family needs; one program per entry, built on first use) and the
+ *    CPU backend's file for it;
  *  - name:   the PN_KERNEL function of the descriptions that implements it;
  *  - shape:  pixel (its last arguments are Params p, then the pixel x, y)
  *            or task (Params p, then the task index);

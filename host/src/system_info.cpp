@@ -15,7 +15,7 @@
 namespace penumbra {
 namespace {
 
-// A context builds a family's program on first use; `info --verbose` times
+// A context builds a kernel's program on first use; `info --verbose` times
 // the builds of all of them, as a run that uses every method would.
 void time_opencl_builds(SystemInfo& info)
 {

@@ -27,48 +27,22 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-    int status;
-    std::string out, err;
-};
-
 using testing::slurp;
+using testing::ToolRun;
 
 class CliTest : public testing::ShadeInputs {
 protected:
-    CliRun run(const std::string& args, const std::string& env = "") const
-    {
-        const std::string cmd = env + " " PENUMBRA_CLI_PATH " " + args + " >" + path("stdout") + " 2>" + path("stderr");
-        const int raw = std::system(cmd.c_str());
-        return {WEXITSTATUS(raw), slurp(path("stdout")), slurp(path("stderr"))};
-    }
-
     std::string shade(const std::string& extra) const
     {
         return "shade --shadow-map " + path("sm.exr") + " --receivers " + path("rx.exr") + " --out " + path("out.exr") +
                " " + extra;
     }
-
-    // A failed run: status 2, exactly one line on stderr containing `needle`,
-    // and the pre-existing output untouched.
-    void expect_bad_input(const std::string& args, const std::string& needle, const std::string& env = "")
-    {
-        std::ofstream(path("out.exr")) << "previous contents";
-        const CliRun r = run(args, env);
-        EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
-        EXPECT_NE(r.err.find(needle), std::string::npos) << "stderr: " << r.err;
-        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr: " << r.err;
-        EXPECT_EQ(slurp(path("out.exr")), "previous contents");
-        for (const auto& entry : fs::directory_iterator(dir_))
-            EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
-    }
-
 };
 
 TEST_F(CliTest, ShadeWritesVisibilityMatchingTheLibrary)
 {
     for (const std::string method : {"vsm", "vssm"}) {
-        const CliRun r = run(shade("--method " + method + " --radius 3 --light-size 0.1 --backend scalar"));
+        const ToolRun r = run(shade("--method " + method + " --radius 3 --light-size 0.1 --backend scalar"));
         ASSERT_EQ(r.status, 0) << r.err;
         const Image out = read_exr(path("out.exr"), {"Y"});
         ASSERT_EQ(out.width(), rx_.width());
@@ -127,17 +101,20 @@ TEST_F(CliTest, ShadeRejectsBadValues)
 
 TEST_F(CliTest, ShadeRejectsBadOptions)
 {
-    expect_bad_input(shade("--method vsm --radius -1"), "--radius");
-    expect_bad_input(shade("--method vsm --min-variance -0.5"), "--min-variance");
-    expect_bad_input(shade("--method vsm --bleed 1"), "--bleed");
-    expect_bad_input(shade("--method vsm --bleed -0.1"), "--bleed");
-    expect_bad_input(shade("--method vssm --light-size 0"), "--light-size");
-    expect_bad_input(shade("--method pcf"), "--method");
-    expect_bad_input(shade("--method vsm --radius three"), "--radius");
-    expect_bad_input(shade("--method vsm --precision float"), "--precision");
-    expect_bad_input(shade("--method vsm --backend cuda"), "backend");
-    expect_bad_input(shade("--method vsm --radius 128"), "radius");
-    expect_bad_input(shade("--method vsm --frobnicate 1"), "--frobnicate");
+    expect_bad_inputs([&](const std::string& options) { return shade(options); },
+                      {
+                          {"--method vsm --radius -1", "--radius"},
+                          {"--method vsm --min-variance -0.5", "--min-variance"},
+                          {"--method vsm --bleed 1", "--bleed"},
+                          {"--method vsm --bleed -0.1", "--bleed"},
+                          {"--method vssm --light-size 0", "--light-size"},
+                          {"--method pcf", "--method"},
+                          {"--method vsm --radius three", "--radius"},
+                          {"--method vsm --precision float", "--precision"},
+                          {"--method vsm --backend cuda", "backend"},
+                          {"--method vsm --radius 128", "radius"},
+                          {"--method vsm --frobnicate 1", "--frobnicate"},
+                      });
     expect_bad_input("shade --method vsm --receivers " + path("rx.exr") + " --out " + path("out.exr"), "--shadow-map");
 }
 
@@ -152,7 +129,7 @@ TEST_F(CliTest, InfoJsonListsBackendsAndHonoursTheIsaOverride)
     // The worst ISA of this build this CPU runs: not the default (the best) where there are two.
     const std::vector<std::string_view> isas = cpu::supported_isas();
     const std::string forced = isas.empty() ? "scalar" : std::string(isas.front());
-    const CliRun r = run("info --json", "PENUMBRA_SIMD_ISA=" + forced);
+    const ToolRun r = run("info --json", "PENUMBRA_SIMD_ISA=" + forced);
     ASSERT_EQ(r.status, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["cpu"]["chosen_isa"], forced);
@@ -161,14 +138,14 @@ TEST_F(CliTest, InfoJsonListsBackendsAndHonoursTheIsaOverride)
     EXPECT_FALSE(j["auto"]["reason"].get<std::string>().empty());
     EXPECT_TRUE(j["opencl"].contains("devices"));
     EXPECT_TRUE(j["backends"].is_array());
-    const CliRun bad = run("info", "PENUMBRA_SIMD_ISA=avx9000");
+    const ToolRun bad = run("info", "PENUMBRA_SIMD_ISA=avx9000");
     EXPECT_EQ(bad.status, 2);
     EXPECT_NE(bad.err.find("avx9000"), std::string::npos);
 }
 
 TEST_F(CliTest, BackendEnvironmentOverride)
 {
-    const CliRun r = run("info --json", "PENUMBRA_BACKEND=scalar");
+    const ToolRun r = run("info --json", "PENUMBRA_BACKEND=scalar");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(nlohmann::json::parse(r.out)["auto"]["backend"], "scalar");
 }

@@ -51,27 +51,9 @@ protected:
         write_exr(path(name), all, {"u", "v", "z", "P.x", "P.y", "P.z", "N.x", "N.y", "N.z"});
     }
 
-    int run(const std::string& args, std::string* err = nullptr) const
-    {
-        const std::string cmd = PENUMBRA_CLI_PATH " " + args + " >" + path("stdout") + " 2>" + path("stderr");
-        const int raw = std::system(cmd.c_str());
-        if (err) *err = slurp(path("stderr"));
-        return WEXITSTATUS(raw);
-    }
-
     std::string shade(const std::string& extra) const
     {
         return "sdf-shade --receivers " + path("rx.exr") + " --out " + path("out.exr") + " " + extra;
-    }
-
-    void expect_bad_input(const std::string& args, const std::string& needle)
-    {
-        std::ofstream(path("out.exr")) << "previous contents";
-        std::string err;
-        EXPECT_EQ(run(args, &err), 2) << args << "\n" << err;
-        EXPECT_NE(err.find(needle), std::string::npos) << "stderr: " << err;
-        EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << "stderr: " << err;
-        EXPECT_EQ(slurp(path("out.exr")), "previous contents");
     }
 
     void expect_equal(const Image& got, const Image& want) const
@@ -90,22 +72,24 @@ TEST_F(SdfCli, SceneAndGridMatchTheLibrary)
 {
     Context ctx(ContextOptions{Backend::Scalar, {}});
     for (const std::string estimate : {"classic", "improved"}) {
-        ASSERT_EQ(run(shade("--scene contact --backend scalar --steps --estimate " + estimate)), 0);
+        const testing::ToolRun r = run(shade("--scene contact --backend scalar --steps --estimate " + estimate));
+        ASSERT_EQ(r.status, 0) << r.err;
         const SdfOptions o = sdf_options_for(scene_, estimate == "classic" ? SdfEstimate::Classic
                                                                            : SdfEstimate::Improved);
         expect_equal(read_exr(path("out.exr"), {"Y"}),
                      sdf_shadows(ctx, reference::analytic_scene(scene_.primitives), rx_.world_position, &rx_.normal, o));
         EXPECT_GE(read_exr(path("out.exr"), {"steps"}).at(0, 11, 8), 1.0f);
     }
-    ASSERT_EQ(run("sdf-bake --scene contact --voxel 0.1 --out " + path("g.pnsdf")), 0);
+    ASSERT_EQ(run("sdf-bake --scene contact --voxel 0.1 --out " + path("g.pnsdf")).status, 0);
     const DistanceGrid grid = read_distance_grid(path("g.pnsdf"));
-    ASSERT_EQ(run(shade("--scene contact --source grid --voxel 0.1 --backend scalar")), 0);
+    ASSERT_EQ(run(shade("--scene contact --source grid --voxel 0.1 --backend scalar")).status, 0);
     const SdfOptions o = sdf_options_for(scene_);
     const Image from_grid = sdf_shadows(ctx, grid, rx_.world_position, &rx_.normal, o);
     expect_equal(read_exr(path("out.exr"), {"Y"}), from_grid);
     ASSERT_EQ(run(shade("--grid " + path("g.pnsdf") + " --k 2 --light-width 1.5 --light-position -2.5,9,-1.5 "
                         "--hit-epsilon " + std::to_string(o.hit_epsilon) + " --t-min " + std::to_string(o.t_min) +
-                        " --normal-offset " + std::to_string(o.normal_offset) + " --max-steps 256 --backend scalar")),
+                        " --normal-offset " + std::to_string(o.normal_offset) + " --max-steps 256 --backend scalar"))
+                  .status,
               0);
     Image again = read_exr(path("out.exr"), {"Y"});
     double worst = 0;
@@ -129,7 +113,8 @@ TEST_F(SdfCli, RejectsBadFilesAndChannels)
     expect_bad_input("sdf-shade --scene contact --receivers " + path("p_only.exr") + " --out " + path("out.exr"),
                      "N.x, N.y, N.z");
     EXPECT_EQ(run("sdf-shade --scene contact --normal-offset 0 --receivers " + path("p_only.exr") + " --out " +
-                  path("ok.exr")),
+                  path("ok.exr"))
+                  .status,
               0);
     write_exr(path("uvz.exr"), rx_.light_uvz, {"u", "v", "z"});
     expect_bad_input("sdf-shade --scene contact --receivers " + path("uvz.exr") + " --out " + path("out.exr"),
@@ -151,24 +136,27 @@ TEST_F(SdfCli, RejectsBadFilesAndChannels)
 
 TEST_F(SdfCli, RejectsBadOptions)
 {
-    expect_bad_input(shade("--scene contact --k 0"), "--k");
-    expect_bad_input(shade("--scene contact --k -2"), "--k");
-    expect_bad_input(shade("--scene contact --t-min 2 --t-max 1"), "--t-max");
-    expect_bad_input(shade("--scene contact --t-max 0"), "--t-max");
-    expect_bad_input(shade("--scene contact --max-steps 0"), "--max-steps");
-    expect_bad_input(shade("--scene contact --hit-epsilon 0"), "--hit-epsilon");
-    expect_bad_input(shade("--scene contact --estimate better"), "--estimate");
-    expect_bad_input(shade("--scene contact --source voxels"), "--source");
-    expect_bad_input(shade("--scene contact --voxel 0.1"), "--voxel");
-    expect_bad_input(shade("--scene contact --source grid --voxel -1"), "--voxel");
-    expect_bad_input(shade("--scene contact --light-position 1,2"), "--light-position");
-    expect_bad_input(shade("--scene contact --light-direction 0,0,0"), "--light-direction");
-    expect_bad_input(shade("--scene contact --light-direction 0,1,0 --light-width 1"), "--light-width");
-    expect_bad_input(shade("--scene contact --backend cuda"), "backend");
-    expect_bad_input(shade(""), "--scene and --grid");
-    expect_bad_input(shade("--scene contact --grid g.pnsdf"), "--scene and --grid");
-    expect_bad_input(shade("--grid g.pnsdf --light-direction 0,1,0"), "--k");
-    expect_bad_input(shade("--grid g.pnsdf --k 3"), "--light-position or --light-direction");
+    expect_bad_inputs([&](const std::string& options) { return shade(options); },
+                      {
+                          {"--scene contact --k 0", "--k"},
+                          {"--scene contact --k -2", "--k"},
+                          {"--scene contact --t-min 2 --t-max 1", "--t-max"},
+                          {"--scene contact --t-max 0", "--t-max"},
+                          {"--scene contact --max-steps 0", "--max-steps"},
+                          {"--scene contact --hit-epsilon 0", "--hit-epsilon"},
+                          {"--scene contact --estimate better", "--estimate"},
+                          {"--scene contact --source voxels", "--source"},
+                          {"--scene contact --voxel 0.1", "--voxel"},
+                          {"--scene contact --source grid --voxel -1", "--voxel"},
+                          {"--scene contact --light-position 1,2", "--light-position"},
+                          {"--scene contact --light-direction 0,0,0", "--light-direction"},
+                          {"--scene contact --light-direction 0,1,0 --light-width 1", "--light-width"},
+                          {"--scene contact --backend cuda", "backend"},
+                          {"", "--scene and --grid"},
+                          {"--scene contact --grid g.pnsdf", "--scene and --grid"},
+                          {"--grid g.pnsdf --light-direction 0,1,0", "--k"},
+                          {"--grid g.pnsdf --k 3", "--light-position or --light-direction"},
+                      });
     expect_bad_input("sdf-bake --scene contact --out " + path("out.exr") + " --margin 1", "--margin");
     expect_bad_input("sdf-bake --scene contact --out " + path("out.exr") + " --voxel 0", "--voxel");
 }

@@ -109,7 +109,9 @@ TEST_F(MethodTableCli, HelpIsGeneratedFromTheTable)
         const std::size_t at = help.out.find(flag);
         ASSERT_NE(at, std::string::npos) << flag;
         EXPECT_EQ(help.out.find(flag, at + 1), std::string::npos) << flag << " listed twice";
-        if (o.range) EXPECT_NE(help.out.find(describe(*o.range), at), std::string::npos) << flag;
+        if (o.range) {
+            EXPECT_NE(help.out.find(describe(*o.range), at), std::string::npos) << flag;
+        }
     }
 }
 

@@ -1,9 +1,9 @@
-// The OpenCL programs per kernel family (cl/opencl_programs.h) against the
+// The OpenCL programs per kernel entry (cl/opencl_programs.h) against the
 // kernel table (kernels/kernel_table.h): every KernelId gets a kernel object
-// of its family's program, each program holds exactly its family's entries
-// (a helper file's kernels stay out), a context builds nothing until a launch,
-// and a VSM run builds only the families it launches. Skips, saying so,
-// without an OpenCL device.
+// of a program that holds it and no other kernel (its family's other entries
+// and a helper file's kernels stay out), a context builds nothing until a
+// launch, and a VSM run builds only the entries it launches. Skips, saying
+// so, without an OpenCL device.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,7 +23,6 @@ namespace penumbra {
 namespace {
 
 #if PENUMBRA_OPENCL
-using detail::KernelFamily;
 using detail::KernelId;
 
 bool opencl_here(std::string* why)
@@ -42,15 +41,7 @@ std::set<std::string> kernels_of_program(const cl::Program& program)
     return names;
 }
 
-std::set<std::string> table_entries_of(KernelFamily family)
-{
-    std::set<std::string> names;
-    for (int k = 0; k < detail::kKernelCount; ++k)
-        if (detail::kernel_family(KernelId(k)) == family) names.emplace(detail::kernel_name(KernelId(k)));
-    return names;
-}
-
-TEST(OpenClPrograms, EveryKernelIdGetsAKernelObjectOfItsFamilysProgram)
+TEST(OpenClPrograms, EveryKernelIdGetsAProgramHoldingItAlone)
 {
     std::string why;
     if (!opencl_here(&why)) GTEST_SKIP() << "OpenCL unavailable here: " << why;
@@ -59,12 +50,11 @@ TEST(OpenClPrograms, EveryKernelIdGetsAKernelObjectOfItsFamilysProgram)
         const KernelId id = KernelId(k);
         cl::Kernel& kernel = backend.programs().kernel(id);
         EXPECT_EQ(kernel.getInfo<CL_KERNEL_FUNCTION_NAME>(), std::string(detail::kernel_name(id)));
-        // The program holds its family's entries and no other: each kernel lives in one program.
+        // PoCL compiles every kernel of a program for its binary: one kernel a program.
         const cl::Program program = kernel.getInfo<CL_KERNEL_PROGRAM>();
-        EXPECT_EQ(kernels_of_program(program), table_entries_of(detail::kernel_family(id)))
-            << "program of " << detail::family_name(detail::kernel_family(id));
+        EXPECT_EQ(kernels_of_program(program), std::set<std::string>{std::string(detail::kernel_name(id))});
     }
-    EXPECT_EQ(backend.programs().programs_built(), detail::kFamilyCount);
+    EXPECT_EQ(backend.programs().programs_built(), detail::kKernelCount);
 }
 
 TEST(OpenClPrograms, AContextBuildsNoProgramBeforeItsFirstLaunch)
@@ -77,7 +67,7 @@ TEST(OpenClPrograms, AContextBuildsNoProgramBeforeItsFirstLaunch)
     EXPECT_EQ(context.program_build_seconds(), 0.0);
 }
 
-TEST(OpenClPrograms, AVsmRunBuildsOnlyTheTableAndChebyshevFamilies)
+TEST(OpenClPrograms, AVsmRunBuildsOnlyTheKernelsItLaunches)
 {
     std::string why;
     if (!opencl_here(&why)) GTEST_SKIP() << "OpenCL unavailable here: " << why;
@@ -97,10 +87,11 @@ TEST(OpenClPrograms, AVsmRunBuildsOnlyTheTableAndChebyshevFamilies)
     const Image out = vsm(context, table, receivers, VsmOptions{});
     EXPECT_EQ(out.width(), 7);
 
-    cl_backend::FamilyPrograms& programs = backend.programs();
-    EXPECT_TRUE(programs.built(KernelFamily::moment_table));
-    EXPECT_TRUE(programs.built(KernelFamily::chebyshev));
-    EXPECT_EQ(programs.programs_built(), 2) << "a VSM run built a family it does not launch";
+    cl_backend::KernelPrograms& programs = backend.programs();
+    // The default precision is exact: the limb table's two passes, then its lookup.
+    for (KernelId id : {KernelId::sat_bands_exact, KernelId::sat_join_bands_exact, KernelId::vsm_exact})
+        EXPECT_TRUE(programs.built(id)) << detail::kernel_name(id);
+    EXPECT_EQ(programs.programs_built(), 3) << "a VSM run built a kernel it does not launch";
     EXPECT_GT(context.program_build_seconds(), 0.0);
 }
 #else

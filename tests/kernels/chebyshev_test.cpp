@@ -23,19 +23,14 @@
 namespace penumbra {
 namespace {
 
-using testing::expect_visibility;
-using testing::backend_names;
-using testing::backend_test_name;
+using namespace testing;  // the references and checks of tests/support
 
 // ---- the independent reference ------------------------------------------------
 
 // A window's E[z] and E[z^2] in double, of the float32 depths themselves
-// (support/vsm_reference.h): an exact (limb) table rounds z and z^2 to 2^-33
+// (covered_moments, support/vsm_reference.h): an exact (limb) table rounds z and z^2 to 2^-33
 // (kernels/moment_table.h), far inside the slack below; a float table of
 // dyadic depths is exact.
-using testing::chebyshev_upper_bound;
-using testing::covered_moments;
-using testing::Moments;
 
 double linstep(double lo, double hi, double v) { return std::clamp((v - lo) / (hi - lo), 0.0, 1.0); }
 
@@ -214,10 +209,7 @@ PN_BACKEND_TEST(VsmTest, ZeroVarianceWithoutFloorIsNeverNaN)
 PN_BACKEND_TEST(VsmTest, DepthsExactlyZeroAndOne)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Image depth(23, 11, 1);
-    std::mt19937 rng(3);
-    for (int y = 0; y < 11; ++y)
-        for (int x = 0; x < 23; ++x) depth.at(0, x, y) = float(rng() % 4 == 0);
+    const Image depth = testing::binary_depth(23, 11, 3, 4);
     for (Precision precision : {Precision::Float, Precision::Exact}) {
         const MomentTable table = build_moment_table(ctx, depth, 2, precision);
         for (int radius : {0, 1, 4, 127})
@@ -236,9 +228,7 @@ PN_BACKEND_TEST(VsmTest, DepthsExactlyZeroAndOne)
                             ASSERT_EQ(got, 1.0);
                         }
                         if (z == 1.0f && precision == Precision::Float) {
-                            const int x0 = std::max(x - radius, 0), x1 = std::min(x + radius + 1, 23);
-                            const int y0 = std::max(y - radius, 0), y1 = std::min(y + radius + 1, 11);
-                            const double ones = testing::brute_sum(depth, 1, x0, x1, y0, y1) / ((x1 - x0) * (y1 - y0));
+                            const double ones = testing::window_mean(depth, 1, x, y, radius);
                             // No ones: var = 0, floored: p = 2e-5 / (2e-5 + 1).
                             const double bound = ones > 0.0 ? ones : 2e-5 / (2e-5 + 1.0);
                             ASSERT_NEAR(got, bound, 1e-6) << "two-point bound at " << x << "," << y;
@@ -267,20 +257,6 @@ INSTANTIATE_TEST_SUITE_P(Backends, VsmTest, ::testing::ValuesIn(backend_names())
 // table's error is moment_table_test's claim, not this kernel's.
 class ChebyshevCrossBackendTest : public ::testing::TestWithParam<std::string> {};
 
-Image cross_receivers(std::uint32_t seed)
-{
-    Image rx(67, 41, 3);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> uv(-0.1f, 1.1f), z(0.0f, 1.05f);
-    for (int y = 0; y < 41; ++y)
-        for (int x = 0; x < 67; ++x) {
-            rx.at(0, x, y) = uv(rng);
-            rx.at(1, x, y) = uv(rng);
-            rx.at(2, x, y) = z(rng);
-        }
-    return rx;
-}
-
 using testing::Difference;
 using testing::difference;
 
@@ -289,7 +265,7 @@ PN_BACKEND_TEST(ChebyshevCrossBackendTest, AgreesWithScalar)
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     Context& scalar = testing::scalar_oracle(backend);
     const Image depth = testing::random_depth(131, 29, 41);
-    const Image rx = cross_receivers(43);
+    const Image rx = scattered_receivers(67, 41, -0.1f, 1.1f, 0.0f, 1.05f, 43);
     const bool simd = backend != "opencl";
     for (Precision precision : {Precision::Float, Precision::Exact}) {
         const MomentTable shared = build_moment_table(scalar, depth, 2, precision);
@@ -362,11 +338,10 @@ TEST(ChebyshevErrors, RejectsBadReceiversAndFilterSettings)
 
 TEST(ChebyshevErrors, RadiusRangeDependsOnPrecision)
 {
-    Context ctx(ContextOptions{Backend::Scalar, {}});
-    const Image depth = testing::random_depth(5, 4, 2);
-    const MomentTable exact = build_moment_table(ctx, depth, 2, Precision::Exact);
-    const MomentTable floats = build_moment_table(ctx, depth, 2, Precision::Float);
-    const Image rx = testing::receivers_at_depth(5, 4, 0.5f);
+    BothPrecisions setup(5, 4, 2);
+    Context& ctx = setup.ctx;
+    const MomentTable &exact = setup.exact, &floats = setup.floats;
+    const Image& rx = setup.rx;
     for (const MomentTable* t : {&exact, &floats})
         for (int bad : {-1, -1000}) expect_error([&] { vsm(ctx, *t, rx, {bad}); }, ErrorCategory::InvalidArgument,
                                                  "vsm", "radius must be >= 0");

@@ -114,6 +114,26 @@ Interval evsm_reference(const EvsmTable& t, const EvsmOptions& o, int x0, int x1
     return iv;
 }
 
+// Runs EVSM of `rx` at every radius of `radii`, bleed 0 and 0.3, checks each
+// output is a visibility, then calls check(options, x, y, value) per pixel;
+// stops at the first fatal failure, as an ASSERT in the loop body would.
+template <class Check>
+void check_each_pixel(Context& ctx, const EvsmTable& table, const Image& rx, std::initializer_list<int> radii,
+                      const std::string& backend, Check&& check)
+{
+    for (int radius : radii)
+        for (float bleed : {0.0f, 0.3f}) {
+            const EvsmOptions o{radius, kDefaultMinVariance, bleed, 0.0f};
+            const Image out = evsm(ctx, table, rx, o);
+            expect_visibility(out, backend);
+            for (int y = 0; y < rx.height(); ++y)
+                for (int x = 0; x < rx.width(); ++x) {
+                    check(o, x, y, double(out.at(0, x, y)));
+                    if (::testing::Test::HasFatalFailure()) return;
+                }
+        }
+}
+
 class EvsmTest : public ::testing::TestWithParam<std::string> {};
 
 // Random maps and receivers, both channel counts and storages, default and
@@ -137,24 +157,17 @@ PN_BACKEND_TEST(EvsmTest, MatchesTheReferenceOnTheTablesOwnSums)
                     const int x = int(rng() % w), y = int(rng() % h);
                     rx.at(2, x, y) = depth.at(0, x, y) + 0.02f * (unit(rng) - 0.5f);
                 }
-                for (int radius : {0, 1, 3})
-                    for (float bleed : {0.0f, 0.3f}) {
-                        const EvsmOptions o{radius, kDefaultMinVariance, bleed, 0.0f};
-                        const Image out = evsm(ctx, table, rx, o);
-                        expect_visibility(out, backend);
-                        for (int y = 0; y < h; ++y)
-                            for (int x = 0; x < w; ++x) {
-                                const Interval iv = evsm_reference(
-                                    table, o, std::max(x - radius, 0), std::min(x + radius + 1, w),
-                                    std::max(y - radius, 0), std::min(y + radius + 1, h), rx.at(2, x, y));
-                                const double got = out.at(0, x, y);
-                                worst = std::max(worst, std::max(iv.lo - got, got - iv.hi));
-                                ASSERT_TRUE(got >= iv.lo - 2e-6 && got <= iv.hi + 2e-6)
-                                    << backend << " " << to_string(q) << "-bit EVSM" << channels << " c+ " << cp
-                                    << " r=" << radius << " at " << x << "," << y << ": " << got << " not in ["
-                                    << iv.lo << ", " << iv.hi << "]";
-                            }
-                    }
+                const auto in_interval = [&](const EvsmOptions& o, int x, int y, double got) {
+                    const int r = o.radius;
+                    const Interval iv = evsm_reference(table, o, std::max(x - r, 0), std::min(x + r + 1, w),
+                                                       std::max(y - r, 0), std::min(y + r + 1, h), rx.at(2, x, y));
+                    worst = std::max(worst, std::max(iv.lo - got, got - iv.hi));
+                    ASSERT_TRUE(got >= iv.lo - 2e-6 && got <= iv.hi + 2e-6)
+                        << backend << " " << to_string(q) << "-bit EVSM" << channels << " c+ " << cp << " r=" << r
+                        << " at " << x << "," << y << ": " << got << " not in [" << iv.lo << ", " << iv.hi << "]";
+                };
+                check_each_pixel(ctx, table, rx, {0, 1, 3}, backend, in_interval);
+                if (::testing::Test::HasFatalFailure()) return;
             }
         }
     std::printf("[ evsm ] %s: worst distance outside the reference interval %.2g\n", backend.c_str(), worst);
@@ -183,37 +196,30 @@ PN_BACKEND_TEST(EvsmTest, DefaultStorageIsTheMethodInDouble)
                 if (i % 3 == 0) rx.at(2, x, y) = depth.at(0, x, y);
                 if (i % 3 == 1) rx.at(2, x, y) = depth.at(0, x, y) + 0.02f * (unit(rng) - 0.5f);
             }
-            for (int radius : {0, 1, 3, 40})
-                for (float bleed : {0.0f, 0.3f}) {
-                    const EvsmOptions o{radius, kDefaultMinVariance, bleed, 0.0f};
-                    const Image out = evsm(ctx, table, rx, o);
-                    expect_visibility(out, backend);
-                    for (int y = 0; y < h; ++y)
-                        for (int x = 0; x < w; ++x) {
-                            const int x0 = std::max(x - radius, 0), x1 = std::min(x + radius + 1, w);
-                            const int y0 = std::max(y - radius, 0), y1 = std::min(y + radius + 1, h);
-                            double m[4] = {0, 0, 0, 0};
-                            for (int j = y0; j < y1; ++j)
-                                for (int i = x0; i < x1; ++i) {
-                                    const double z = depth.at(0, i, j);
-                                    const double p = std::exp(double(cp) * (z - 1.0)), n = std::exp(-double(cn) * z);
-                                    m[0] += p, m[1] += p * p, m[2] += n, m[3] += n * n;
-                                }
-                            const double area = double(x1 - x0) * (y1 - y0);
-                            const double zr = std::clamp(double(rx.at(2, x, y)), 0.0, 1.0);
-                            const double wp = std::exp(double(cp) * (zr - 1.0)), wn = std::exp(-double(cn) * zr);
-                            const double floor_p = kDefaultMinVariance * std::pow(double(cp) * wp, 2);
-                            double want = chebyshev(m[0] / area, m[1] / area, wp, floor_p, bleed);
-                            if (channels == 4)
-                                want = std::min(want, chebyshev(-m[2] / area, m[3] / area, -wn,
-                                                                kDefaultMinVariance * std::pow(double(cn) * wn, 2),
-                                                                bleed));
-                            const double got = out.at(0, x, y);
-                            worst = std::max(worst, std::abs(got - want));
-                            ASSERT_NEAR(got, want, 1e-5) << backend << " EVSM" << channels << " c+ " << cp << " r="
-                                                         << radius << " " << w << "x" << h << " at " << x << "," << y;
-                        }
-                }
+            const auto near_double = [&](const EvsmOptions& o, int x, int y, double got) {
+                const int x0 = std::max(x - o.radius, 0), x1 = std::min(x + o.radius + 1, w);
+                const int y0 = std::max(y - o.radius, 0), y1 = std::min(y + o.radius + 1, h);
+                double m[4] = {0, 0, 0, 0};
+                for (int j = y0; j < y1; ++j)
+                    for (int i = x0; i < x1; ++i) {
+                        const double z = depth.at(0, i, j);
+                        const double p = std::exp(double(cp) * (z - 1.0)), n = std::exp(-double(cn) * z);
+                        m[0] += p, m[1] += p * p, m[2] += n, m[3] += n * n;
+                    }
+                const double area = double(x1 - x0) * (y1 - y0);
+                const double zr = std::clamp(double(rx.at(2, x, y)), 0.0, 1.0);
+                const double wp = std::exp(double(cp) * (zr - 1.0)), wn = std::exp(-double(cn) * zr);
+                const double floor_p = kDefaultMinVariance * std::pow(double(cp) * wp, 2);
+                double want = chebyshev(m[0] / area, m[1] / area, wp, floor_p, o.bleed);
+                if (channels == 4)
+                    want = std::min(want, chebyshev(-m[2] / area, m[3] / area, -wn,
+                                                    kDefaultMinVariance * std::pow(double(cn) * wn, 2), o.bleed));
+                worst = std::max(worst, std::abs(got - want));
+                ASSERT_NEAR(got, want, 1e-5) << backend << " EVSM" << channels << " c+ " << cp << " r=" << o.radius
+                                             << " " << w << "x" << h << " at " << x << "," << y;
+            };
+            check_each_pixel(ctx, table, rx, {0, 1, 3, 40}, backend, near_double);
+            if (::testing::Test::HasFatalFailure()) return;
         }
     std::printf("[ evsm ] %s: default storage, worst |kernel - double| %.2g\n", backend.c_str(), worst);
 }

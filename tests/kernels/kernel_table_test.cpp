@@ -5,8 +5,8 @@
 // table and filled from it (simd/cpu_kernels.cpp), so an entry no description
 // defines does not compile; here every member, and every hand-listed helper,
 // is set on every ISA this build holds and this CPU runs. Table <-> OpenCL:
-// tests/opencl_programs_test.cpp (each family's program holds exactly its
-// entries). Table <-> sources: every PN_KERNEL in kernels/ is
+// tests/host/opencl_programs_test.cpp (each entry's program holds that
+// kernel alone). Table <-> sources: every PN_KERNEL in kernels/ is
 // an entry and every entry a PN_KERNEL.
 #include "host/backend/kernel_id.h"
 

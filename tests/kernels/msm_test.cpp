@@ -302,10 +302,7 @@ PN_BACKEND_TEST(MsmTest, ConstantMapsAnyWindow)
 PN_BACKEND_TEST(MsmTest, DepthsZeroAndOneOnly)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Image depth(23, 11, 1);
-    std::mt19937 rng(3);
-    for (int y = 0; y < 11; ++y)
-        for (int x = 0; x < 23; ++x) depth.at(0, x, y) = float(rng() % 3 == 0);
+    const Image depth = testing::binary_depth(23, 11, 3, 3);
     for (Quantization q : {Quantization::None, Quantization::Bits32}) {
         const MsmTable table = msm_table_for(ctx, depth, q);
         const float alpha = default_moment_bias(q);
@@ -316,9 +313,7 @@ PN_BACKEND_TEST(MsmTest, DepthsZeroAndOneOnly)
                 expect_visibility(out, backend);
                 for (int y = 0; y < 11; ++y)
                     for (int x = 0; x < 23; ++x) {
-                        const int x0 = std::max(x - radius, 0), x1 = std::min(x + radius + 1, 23);
-                        const int y0 = std::max(y - radius, 0), y1 = std::min(y + radius + 1, 11);
-                        const double ones = testing::brute_sum(depth, 1, x0, x1, y0, y1) / ((x1 - x0) * (y1 - y0));
+                        const double ones = testing::window_mean(depth, 1, x, y, radius);
                         const double want = z == 0.0f ? 1.0 : (1.0 - alpha) * ones + alpha / 2;
                         ASSERT_NEAR(out.at(0, x, y), want, 2e-4)
                             << backend << " " << to_string(q) << "-bit r=" << radius << " z " << z << " at " << x

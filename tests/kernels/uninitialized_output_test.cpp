@@ -16,6 +16,7 @@
 #include "penumbra/moment_table.h"
 #include "penumbra/moments.h"
 #include "support/backends.h"
+#include "support/maps.h"
 
 namespace penumbra {
 namespace {
@@ -55,16 +56,7 @@ Image random_depths(int width, int height, unsigned seed)
 // u, v across the map (a little beyond its edges), z around the depths.
 Image random_receivers(int width, int height, unsigned seed)
 {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> uv(-0.05f, 1.05f), z(0.1f, 0.9f);
-    Image rx(width, height, 3);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            rx.at(0, x, y) = uv(rng);
-            rx.at(1, x, y) = uv(rng);
-            rx.at(2, x, y) = z(rng);
-        }
-    return rx;
+    return testing::scattered_receivers(width, height, -0.05f, 1.05f, 0.1f, 0.9f, seed);
 }
 
 // Writes a method's output into `out`; the allocating overload is the reference.

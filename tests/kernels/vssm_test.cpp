@@ -12,6 +12,7 @@
 #include "penumbra/chebyshev.h"
 #include "penumbra/error.h"
 #include "support/backends.h"
+#include "support/errors.h"
 #include "support/maps.h"
 #include "support/visibility.h"
 #include "support/vsm_reference.h"
@@ -19,17 +20,12 @@
 namespace penumbra {
 namespace {
 
-using testing::expect_visibility;
-using testing::backend_names;
-using testing::backend_test_name;
+using namespace testing;  // the references and checks of tests/support
 
 // ---- the brute-force reference ------------------------------------------------
 
-// Window moments over fractional windows and the Chebyshev bound, in double
-// (support/vsm_reference.h).
-using testing::chebyshev_upper_bound;
-using testing::covered_moments;
-using testing::Moments;
+// Window moments over fractional windows and the Chebyshev bound, in double,
+// come from support/vsm_reference.h (covered_moments, chebyshev_upper_bound).
 
 // Offsets added to the reference's intermediates, to measure how sensitive the
 // answer is to the kernel's float rounding of them (see vssm_expected).
@@ -214,15 +210,7 @@ PN_BACKEND_TEST(VssmTest, HandComputedCheckerboard)
 PN_BACKEND_TEST(VssmTest, FractionalWindowsMatchWeightedBruteForce)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Image rx(31, 17, 3);
-    std::mt19937 rng(17);
-    std::uniform_real_distribution<float> uv(-0.05f, 1.05f), z(0.0f, 1.0f);
-    for (int y = 0; y < 17; ++y)
-        for (int x = 0; x < 31; ++x) {
-            rx.at(0, x, y) = uv(rng);
-            rx.at(1, x, y) = uv(rng);
-            rx.at(2, x, y) = z(rng);
-        }
+    const Image rx = scattered_receivers(31, 17, -0.05f, 1.05f, 0.0f, 1.0f, 17);
     double worst = 0.0;
     for (Precision precision : {Precision::Float, Precision::Exact}) {
         const Image depth = testing::random_depth(29, 23, 5, precision == Precision::Float);
@@ -312,10 +300,7 @@ PN_BACKEND_TEST(VssmTest, ZeroVarianceWithoutFloorIsNeverNaN)
 PN_BACKEND_TEST(VssmTest, DepthsExactlyZeroAndOneAndHugeLights)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    Image depth(23, 11, 1);
-    std::mt19937 rng(3);
-    for (int y = 0; y < 11; ++y)
-        for (int x = 0; x < 23; ++x) depth.at(0, x, y) = float(rng() % 4 == 0);
+    const Image depth = testing::binary_depth(23, 11, 3, 4);
     for (Precision precision : {Precision::Float, Precision::Exact}) {
         // 10 on a 23-wide map: a search half-width of 115 texels, far beyond the
         // map yet inside the exact limit (126).
@@ -365,27 +350,19 @@ INSTANTIATE_TEST_SUITE_P(Backends, VssmTest, ::testing::ValuesIn(backend_names()
 
 TEST(VssmErrors, RejectsBadLightSizes)
 {
-    Context ctx(ContextOptions{Backend::Scalar, {}});
-    const Image depth = testing::random_depth(64, 64, 1);
-    const MomentTable exact = build_moment_table(ctx, depth, 2, Precision::Exact);
-    const MomentTable floats = build_moment_table(ctx, depth, 2, Precision::Float);
-    const Image rx = testing::receivers_at_depth(64, 64, 0.5f);
-    auto expect_error = [&](const MomentTable& table, float light, const std::string& needle) {
-        try {
-            vssm(ctx, table, rx, {light});
-            ADD_FAILURE() << "no error for light-size " << light;
-        } catch (const Error& e) {
-            EXPECT_EQ(e.category(), ErrorCategory::InvalidArgument) << e.what();
-            EXPECT_EQ(e.operation(), "vssm");
-            EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-        }
+    BothPrecisions setup(64, 64, 1);
+    Context& ctx = setup.ctx;
+    const MomentTable &exact = setup.exact, &floats = setup.floats;
+    const Image& rx = setup.rx;
+    auto rejects = [&](const MomentTable& table, float light, const std::string& needle) {
+        expect_error([&] { vssm(ctx, table, rx, {light}); }, ErrorCategory::InvalidArgument, "vssm", needle);
     };
     for (const MomentTable* t : {&exact, &floats})
-        for (float bad : {0.0f, -0.1f, -INFINITY, INFINITY, NAN}) expect_error(*t, bad, "light-size must be > 0");
+        for (float bad : {0.0f, -0.1f, -INFINITY, INFINITY, NAN}) rejects(*t, bad, "light-size must be > 0");
     // Exact tables: the search half-width L * 64 / 2 must stay <= 126 texels
     // (L = 8: half-width 256, a 512-texel search).
-    expect_error(exact, 8.0f, "light-size 8.000000 needs a blocker search of 512 texels");
-    expect_error(exact, 3.95f, "more than an exact table keeps exact");
+    rejects(exact, 8.0f, "light-size 8.000000 needs a blocker search of 512 texels");
+    rejects(exact, 3.95f, "more than an exact table keeps exact");
     EXPECT_NO_THROW(vssm(ctx, exact, rx, {126.0f / 32.0f}));
     EXPECT_NO_THROW(vssm(ctx, floats, rx, {8.0f}));
     EXPECT_NO_THROW(vssm(ctx, exact, rx, {1e-6f}));

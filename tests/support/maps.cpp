@@ -30,6 +30,30 @@ Image receivers_on_texels(int width, int height, int map_w, int map_h, float z_l
     return rx;
 }
 
+Image binary_depth(int width, int height, std::uint32_t seed, unsigned one_in)
+{
+    Image depth(width, height, 1);
+    std::mt19937 rng(seed);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) depth.at(0, x, y) = float(rng() % one_in == 0);
+    return depth;
+}
+
+Image scattered_receivers(int width, int height, float uv_lo, float uv_hi, float z_lo, float z_hi,
+                          std::uint32_t seed)
+{
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> uv(uv_lo, uv_hi), z(z_lo, z_hi);
+    Image rx(width, height, 3);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            rx.at(0, x, y) = uv(rng);
+            rx.at(1, x, y) = uv(rng);
+            rx.at(2, x, y) = z(rng);
+        }
+    return rx;
+}
+
 Image receivers_at_depth(int map_w, int map_h, float z)
 {
     Image rx = receivers_on_texels(map_w, map_h, map_w, map_h, 0.0f, 0.0f, 1);
@@ -60,6 +84,13 @@ double brute_sum(const Image& depth, int k, int x0, int x1, int y0, int y1)
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) sum += std::pow(double(depth.at(0, x, y)), k);
     return sum;
+}
+
+double window_mean(const Image& depth, int k, int x, int y, int radius)
+{
+    const int x0 = std::max(x - radius, 0), x1 = std::min(x + radius + 1, depth.width());
+    const int y0 = std::max(y - radius, 0), y1 = std::min(y + radius + 1, depth.height());
+    return brute_sum(depth, k, x0, x1, y0, y1) / (double(x1 - x0) * (y1 - y0));
 }
 
 std::uint32_t brute_exact_sum(const Image& depth, int plane, int limbs, int x0, int x1, int y0, int y1)

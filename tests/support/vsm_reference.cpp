@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "support/maps.h"
+
 namespace penumbra::testing {
 
 Moments covered_moments(const Image& depth, double x0, double x1, double y0, double y1)
@@ -25,6 +27,14 @@ double chebyshev_upper_bound(double raw_variance, double d, double min_variance)
     if (d <= 0.0) return 1.0;
     const double var = std::max(raw_variance, min_variance);
     return var / (var + d * d);
+}
+
+BothPrecisions::BothPrecisions(int width, int height, std::uint32_t seed)
+    : ctx(ContextOptions{Backend::Scalar, {}}),
+      exact(build_moment_table(ctx, random_depth(width, height, seed), 2, Precision::Exact)),
+      floats(build_moment_table(ctx, random_depth(width, height, seed), 2, Precision::Float)),
+      rx(receivers_at_depth(width, height, 0.5f))
+{
 }
 
 }  // namespace penumbra::testing

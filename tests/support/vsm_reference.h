@@ -4,7 +4,11 @@
 // tests/kernels/chebyshev_test.cpp and vssm_test.cpp.
 #pragma once
 
+#include <cstdint>
+
+#include "penumbra/context.h"
 #include "penumbra/image.h"
+#include "penumbra/moment_table.h"
 
 namespace penumbra::testing {
 
@@ -23,5 +27,15 @@ Moments covered_moments(const Image& depth, double x0, double x1, double y0, dou
 // p_max = var / (var + d^2) for d = z - mean > 0, else 1, with var floored at
 // `min_variance` (Cantelli's inequality; Donnelly & Lauritzen 2006).
 double chebyshev_upper_bound(double raw_variance, double d, double min_variance);
+
+// The set-up of the parameter checks of vsm() and vssm(): a scalar context,
+// the exact and the float moment table of one random map, and a receiver over
+// each of its texels at depth 0.5.
+struct BothPrecisions {
+    BothPrecisions(int width, int height, std::uint32_t seed);
+    Context ctx;
+    MomentTable exact, floats;
+    Image rx;
+};
 
 }  // namespace penumbra::testing
