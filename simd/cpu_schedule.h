@@ -28,7 +28,8 @@ void for_each_strip(int width, int height, int lanes, Kernel&& kernel)
 template <KernelId K, class... Args>
 void launch_pixels(const CpuKernels& kernels, int width, int height, const Args&... args)
 {
-    static_assert(detail::KernelTraits<K>::shape == KernelShape::pixel, "launch_tasks runs a task entry");
+    static_assert(detail::KernelTraits<K>::shape == KernelShape::pixel,
+                  "launch_pixels runs a pixel entry (a task entry goes to launch_tasks)");
     const CpuEntry<K> kernel = entry<K>(kernels);
     for_each_strip(width, height, kernels.lanes, [&](int x, int y) { kernel(args..., x, y); });
 }
@@ -37,7 +38,8 @@ void launch_pixels(const CpuKernels& kernels, int width, int height, const Args&
 template <KernelId K, class... Args>
 void launch_tasks(const CpuKernels& kernels, int tasks, const Args&... args)
 {
-    static_assert(detail::KernelTraits<K>::shape == KernelShape::task, "launch_pixels runs a pixel entry");
+    static_assert(detail::KernelTraits<K>::shape == KernelShape::task,
+                  "launch_tasks runs a task entry (a pixel entry goes to launch_pixels)");
     const CpuEntry<K> kernel = entry<K>(kernels);
     tbb::parallel_for(0, tasks, [&](int task) { kernel(args..., task); });
 }
