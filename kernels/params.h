@@ -154,7 +154,7 @@ typedef struct {
 #define PN_BIAS_RECEIVER_PLANE 2 /* the tap's depth on the receiver's plane (Isidoro 2006), clamped */
 typedef struct {
     int mode;          /* PN_BIAS_* */
-    float constant;    /* depth units: the constant mode's bias, the others' base */
+    float depth_bias;  /* depth units: the constant mode's bias, the others' base ("constant" is an OpenCL keyword) */
     float slope_scale; /* slope: bias per unit of the receiver's depth change across one texel */
     float low;         /* slope, receiver-plane: the bias is clamped to [low, high] (Toy Story 3; --bias-min) */
     float high;        /* --bias-max */
