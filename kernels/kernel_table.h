@@ -53,6 +53,7 @@
     X(moments, evsm_float, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
     X(moments, evsm_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
     X(pcf, pcf, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))                   \
+    X(pcf, pcf_gather, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))            \
     X(pcf, pcf_gauss, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
     X(pcf, pcf_disc, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
 
