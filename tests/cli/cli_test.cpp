@@ -108,7 +108,7 @@ TEST_F(CliTest, ShadeRejectsBadOptions)
                           {"--method vsm --bleed 1", "--bleed"},
                           {"--method vsm --bleed -0.1", "--bleed"},
                           {"--method vssm --light-size 0", "--light-size"},
-                          {"--method pcf", "--method"},
+                          {"--method pcf-box", "--method"},
                           {"--method vsm --radius three", "--radius"},
                           {"--method vsm --precision float", "--precision"},
                           {"--method vsm --backend cuda", "backend"},

@@ -91,7 +91,7 @@ TEST_F(MomentsCli, BadOptionsNameTheOption)
                           {"--method evsm4 --exponents 0,1", "--exponents"},
                           {"--method evsm2 --moment-bias 1e-4", "--moment-bias: applies to msm and msm-soft"},
                           {"--method msm --exponents 3,2", "--exponents: applies to evsm2 and evsm4"},
-                          {"--method vsm --depth-bias 1e-3", "--depth-bias: applies to msm, msm-soft, evsm2 and evsm4"},
+                          {"--method vsm --depth-bias 1e-3", "--depth-bias: applies to msm, msm-soft, evsm2, evsm4"},
                           {"--method msm-shadows", "--method"},
                           {"--method msm --radius 200", "radius 200 exceeds 127"},
                       });

@@ -25,6 +25,7 @@
 #include "penumbra/image.h"
 #include "penumbra/moments.h"
 #include "penumbra/parameter_range.h"
+#include "penumbra/pcf.h"
 
 namespace penumbra {
 
@@ -42,6 +43,15 @@ struct MethodSettings {
     std::optional<float> moment_bias{}, depth_bias{};  // unset: the method's default
     Quantization quantization = Quantization::None;
     std::optional<float> positive_exponent{}, negative_exponent{};
+    // The percentage-closer family (penumbra/pcf.h); depth_bias unset: kPcfDefaultDepthBias.
+    BiasMode bias_mode = DepthBias{}.mode;
+    float bias_min = DepthBias{}.min, bias_max = DepthBias{}.max, slope_scale = DepthBias{}.slope_scale;
+    DerivativeSource derivatives = DepthBias{}.derivatives;
+    int grid = PcfGaussOptions{}.grid;
+    float sigma = PcfGaussOptions{}.sigma;
+    int taps = PcfDiscOptions{}.taps;
+    float disc_radius = PcfDiscOptions{}.radius;
+    bool rotate = PcfDiscOptions{}.rotate;
 };
 
 struct Method;
@@ -104,6 +114,10 @@ struct Method {
     // run a method; a benchmark times each step alone.
     Image run(Context& context, const Image& map, const Image& receivers, const MethodSettings& settings) const;
 };
+
+// The receivers' channels a method run with `settings` reads from a file:
+// u, v, z, and dzdu, dzdv when a bias takes its derivatives from channels.
+std::vector<std::string> receiver_channels(const MethodSettings& settings);
 
 // The build step of a method that reads the shadow map itself: keeps no table.
 PreparedMap prepare_map(Context& context, const Image& map, const MethodSettings& settings);
