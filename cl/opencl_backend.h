@@ -1,7 +1,8 @@
 // The OpenCL backend: its device, its programs (one per kernel family, built
-// on first use: cl/opencl_programs.h) and the launches. One class; each kernel
-// family implements its methods in its own file (cl/opencl_<family>.cpp),
-// next to its launches, all through launch<K> (cl/opencl_launch.h).
+// on first use: cl/opencl_programs.h) and the launches. One class: the
+// generic lookup of every lookup-shaped entry in cl/opencl_lookup.cpp, and
+// each schedule that differs (table builds, bilateral, SDF) in its family's
+// file (cl/opencl_<family>.cpp), all through launch<K> (cl/opencl_launch.h).
 //
 // Schedule: per-pixel kernels run one work-item per pixel (the driver picks the
 // work-group size); per-task kernels one work-item per task (a band of rows).
@@ -28,11 +29,11 @@ public:
     double program_build_seconds() const override { return programs_.build_seconds(); }
     FamilyPrograms& programs() { return programs_; }
 
+    // cl/opencl_lookup.cpp: every lookup-shaped entry
+    void receiver_lookup(detail::KernelId kernel, const detail::LookupSource& source, const Image& receivers,
+                         const void* params, Image& out, int* bad_rows) override;
     // cl/opencl_moment_table.cpp
     void build_moment_table(const Image& depth, MomentTable& table, int* bad_rows) override;
-    // cl/opencl_chebyshev.cpp
-    void chebyshev(detail::ChebyshevMethod method, const MomentTable& table, const Image& receivers,
-                   const ChebyshevParams& params, Image& out, int* bad_rows) override;
     // cl/opencl_bilateral.cpp
     void cross_bilateral(const Image& mask, const Image& guide, const Image* normals, const std::vector<int>& taps,
                          const std::vector<float>& weights, bool separable, const BilateralParams& params, Image& out,
@@ -45,19 +46,8 @@ public:
     // cl/opencl_moments.cpp
     void build_encoded_table(const Image& depth, const EncodedSatParams& params, MomentTable& table,
                              int* bad_rows) override;
-    void moment_lookup(MomentMethod method, const MomentTable& table, const Image& receivers,
-                       const MomentParams& params, Image& out, int* bad_rows) override;
 
 private:
-    // A per-pixel lookup over a moment table (VSM, VSSM, MSM, EVSM entries share
-    // the argument list: table origin, receivers, output, row flags, params),
-    // FloatK on a float table, ExactK on an exact one. cl/opencl_chebyshev.cpp
-    template <detail::KernelId FloatK, detail::KernelId ExactK, class Params>
-    void table_lookup(const MomentTable& table, const Image& receivers, const Params& params, Image& out,
-                      int* bad_rows);
-    template <detail::KernelId K, class T, class Params>
-    void table_lookup_as(const MomentTable& table, const Image& receivers, const Params& params, Image& out,
-                         int* bad_rows);
     template <detail::KernelId K>
     void sdf(const float* data, std::size_t floats, const Image& positions, const Image& normals,
              const SdfParams& params, Image& out, int* bad_rows);

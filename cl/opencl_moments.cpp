@@ -1,10 +1,11 @@
 // OpenCL launches of the moment family: the encoded table build
 // (kernels/encoded_table.h; bands of 32 rows, one work-item each, then the
-// join of kernels/moment_table.h, as the moment table's build) and the
-// lookups (kernels/msm.h, msm_soft.h, evsm.h; one work-item per receiver).
+// join of kernels/moment_table.h, as the moment table's build); the lookups
+// (kernels/msm.h, msm_soft.h, evsm.h) run through the generic
+// receiver_lookup (cl/opencl_lookup.cpp).
 #include <cstdint>
 
-#include "cl/opencl_table_lookup.h"
+#include "cl/opencl_backend.h"
 
 namespace penumbra::cl_backend {
 
@@ -44,17 +45,6 @@ void OpenClBackend::build_encoded_table_as(const Image& depth, const EncodedSatP
     join_bands(target.origin, columns, detail::join_params(p), Pixels{depth.width(), depth.height()});
     sync_to_host(queue(), target.storage, table.storage_elements() * 4);
     sync_to_host(queue(), flags);
-}
-
-void OpenClBackend::moment_lookup(MomentMethod method, const MomentTable& table, const Image& receivers,
-                                  const MomentParams& p, Image& out, int* bad_rows)
-{
-    if (method == MomentMethod::Msm)
-        table_lookup<KernelId::msm_float, KernelId::msm_exact>(table, receivers, p, out, bad_rows);
-    else if (method == MomentMethod::MsmSoft)
-        table_lookup<KernelId::msm_soft_float, KernelId::msm_soft_exact>(table, receivers, p, out, bad_rows);
-    else
-        table_lookup<KernelId::evsm_float, KernelId::evsm_exact>(table, receivers, p, out, bad_rows);
 }
 
 }  // namespace penumbra::cl_backend

@@ -1,6 +1,7 @@
 // The CPU backend (SIMD and Scalar): the schedule around simd/cpu_kernels.
-// One class; each kernel family implements its methods in its own file
-// (simd/cpu_<family>.cpp), next to its launches.
+// One class: the generic lookup of every lookup-shaped entry in
+// simd/cpu_lookup.cpp, and each schedule that differs (table builds,
+// bilateral, SDF) in its family's file (simd/cpu_<family>.cpp).
 #pragma once
 
 #include <memory>
@@ -17,11 +18,11 @@ public:
     std::string description() const override;
     std::string isa() const override { return kernels_.isa; }
 
+    // simd/cpu_lookup.cpp: every lookup-shaped entry
+    void receiver_lookup(KernelId kernel, const detail::LookupSource& source, const Image& receivers,
+                         const void* params, Image& out, int* bad_rows) override;
     // simd/cpu_moment_table.cpp
     void build_moment_table(const Image& depth, MomentTable& table, int* bad_rows) override;
-    // simd/cpu_chebyshev.cpp
-    void chebyshev(detail::ChebyshevMethod method, const MomentTable& table, const Image& receivers,
-                   const ChebyshevParams& params, Image& out, int* bad_rows) override;
     // simd/cpu_bilateral.cpp
     void cross_bilateral(const Image& mask, const Image& guide, const Image* normals, const std::vector<int>& taps,
                          const std::vector<float>& weights, bool separable, const BilateralParams& params, Image& out,
@@ -34,8 +35,6 @@ public:
     // simd/cpu_moments.cpp
     void build_encoded_table(const Image& depth, const EncodedSatParams& params, MomentTable& table,
                              int* bad_rows) override;
-    void moment_lookup(MomentMethod method, const MomentTable& table, const Image& receivers,
-                       const MomentParams& params, Image& out, int* bad_rows) override;
 
 private:
     const CpuKernels& kernels_;

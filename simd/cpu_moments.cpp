@@ -1,5 +1,6 @@
-// CPU launches of the moment family: the encoded table build
-// (kernels/encoded_table.h) and the lookups (kernels/msm.h, msm_soft.h, evsm.h).
+// CPU launch of the moment family's encoded table build
+// (kernels/encoded_table.h); its lookups (kernels/msm.h, msm_soft.h, evsm.h)
+// run through the generic receiver_lookup (simd/cpu_lookup.cpp).
 //
 // Table schedule: bands of rows scanned in parallel, one TBB task per band,
 // then sat_join_bands_* adds the column totals of the bands above to every
@@ -53,22 +54,6 @@ void CpuBackend::build_encoded_table(const Image& depth, const EncodedSatParams&
     else
         build_in_bands<KernelId::encoded_bands_exact, KernelId::sat_join_bands_exact>(kernels_, depth,
                                                                                       table.exact_origin(), p, bad_rows);
-}
-
-void CpuBackend::moment_lookup(MomentMethod method, const MomentTable& table, const Image& receivers,
-                               const MomentParams& p, Image& out, int* bad_rows)
-{
-    switch (method) {
-    case MomentMethod::Msm:
-        return launch_table_lookup<KernelId::msm_float, KernelId::msm_exact>(kernels_, table, receivers, p, out,
-                                                                             bad_rows);
-    case MomentMethod::MsmSoft:
-        return launch_table_lookup<KernelId::msm_soft_float, KernelId::msm_soft_exact>(kernels_, table, receivers, p,
-                                                                                       out, bad_rows);
-    case MomentMethod::Evsm:
-        return launch_table_lookup<KernelId::evsm_float, KernelId::evsm_exact>(kernels_, table, receivers, p, out,
-                                                                               bad_rows);
-    }
 }
 
 }  // namespace penumbra::cpu

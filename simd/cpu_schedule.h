@@ -6,7 +6,6 @@
 #include <tbb/parallel_for.h>
 
 #include "penumbra/image.h"
-#include "penumbra/moment_table.h"
 #include "simd/cpu_kernels.h"
 
 namespace penumbra::cpu {
@@ -41,20 +40,6 @@ void launch_tasks(const CpuKernels& kernels, int tasks, const Args&... args)
     static_assert(detail::KernelTraits<K>::shape == KernelShape::task, "launch_pixels runs a pixel entry");
     const CpuEntry<K> kernel = entry<K>(kernels);
     tbb::parallel_for(0, tasks, [&](int task) { kernel(args..., task); });
-}
-
-// A lookup of a moment table per receiver: entry Float on a float table,
-// Exact on an exact one (the _float / _exact variants of one description).
-template <KernelId Float, KernelId Exact, class Params>
-void launch_table_lookup(const CpuKernels& kernels, const MomentTable& table, const Image& receivers,
-                         const Params& p, Image& out, int* bad_rows)
-{
-    if (table.precision() == Precision::Float)
-        launch_pixels<Float>(kernels, out.width(), out.height(), table.float_origin(), receivers.plane(0), out.plane(0),
-                             bad_rows, p);
-    else
-        launch_pixels<Exact>(kernels, out.width(), out.height(), table.exact_origin(), receivers.plane(0), out.plane(0),
-                             bad_rows, p);
 }
 
 }  // namespace penumbra::cpu

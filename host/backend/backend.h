@@ -1,19 +1,71 @@
 // The interface every backend implements (simd/cpu_backend.h,
-// cl/opencl_backend.h): one method per host operation; host/src/*.cpp call it.
-// Inputs are validated before these are called; a backend trusts its
-// arguments. The kernels it runs are named by KernelId (kernel_id.h, beside
-// this file).
+// cl/opencl_backend.h): one generic per-receiver lookup for every
+// lookup-shaped entry of the kernel table, and one method per schedule that
+// differs (table builds, the bilateral passes, the SDF marches);
+// host/src/*.cpp call it. Inputs are validated before these are called; a
+// backend trusts its arguments. The kernels it runs are named by KernelId
+// (kernel_id.h, beside this file).
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
+#include "host/backend/kernel_id.h"
 #include "kernels/params.h"
 #include "penumbra/image.h"
 #include "penumbra/moment_table.h"
 
 namespace penumbra::detail {
 
-enum class ChebyshevMethod { Vsm, Vssm };
+// What a lookup-shaped entry reads per receiver (its PN_IN(T) source): the
+// planes of a moment table (float or exact), or a plain float image such as a
+// raw depth map (the percentage-closer family filters the shadow map itself).
+// The entry's Params carry the source's dims; this carries its storage.
+class LookupSource {
+public:
+    LookupSource(const MomentTable& table) : table_(&table) {}  // NOLINT: a table is a source
+    LookupSource(const Image& map) : map_(&map) {}              // NOLINT: so is a float image
+
+    const MomentTable* table() const { return table_; }
+    const Image* map() const { return map_; }
+    // The first element an entry reading T gets (a table's origin, an
+    // image's plane 0); throws Error(InvalidArgument, "source") when the
+    // source holds no T (an exact table for a float entry, an image for a uint one).
+    template <class T>
+    const T* origin(KernelId kernel) const;
+
+private:
+    const MomentTable* table_ = nullptr;
+    const Image* map_ = nullptr;
+};
+
+template <>
+const float* LookupSource::origin<float>(KernelId kernel) const;
+template <>
+const std::uint32_t* LookupSource::origin<std::uint32_t>(KernelId kernel) const;
+
+// The Error a backend throws for a KernelId that is no lookup-shaped entry.
+[[noreturn]] void throw_not_a_lookup(KernelId kernel);
+
+// Calls visit(KernelConstant<K>{}, params) with `params` as K's Params when
+// `kernel` is lookup-shaped (kernel_id.h), throws Error(InvalidArgument,
+// "kernel") otherwise: the dispatch each backend's receiver_lookup runs, so
+// that a backend has no per-method code.
+template <class Visitor>
+void visit_lookup(KernelId kernel, const void* params, Visitor&& visit)
+{
+    visit_kernel(
+        kernel,
+        [&](auto k) {
+            constexpr KernelId K = decltype(k)::value;
+            if constexpr (is_lookup_shaped<K>)
+                visit(k, *static_cast<const typename KernelTraits<K>::Params*>(params));
+            else
+                throw_not_a_lookup(K);
+        },
+        [&] { throw_not_a_lookup(kernel); });
+}
 
 class BackendImpl {
 public:
@@ -26,11 +78,15 @@ public:
     // input they check, zeroed) gets a 1 for every row holding a value the
     // kernel cannot take; the host then finds and reports the first one.
 
+    // Lookup-shaped entry `kernel` (kernel_id.h) once per receiver: reads
+    // `source`, `receivers` (plane 0 onwards: u, v, z), writes out's plane 0;
+    // `params` points to the entry's complete Params (use the typed
+    // receiver_lookup<K> below, which checks that). Throws Error for a kernel
+    // that is not lookup-shaped. bad_rows: per receiver row.
+    virtual void receiver_lookup(KernelId kernel, const LookupSource& source, const Image& receivers,
+                                 const void* params, Image& out, int* bad_rows) = 0;
     // Fills `table` from `depth`; bad_rows: per depth row.
     virtual void build_moment_table(const Image& depth, MomentTable& table, int* bad_rows) = 0;
-    // `params` is complete; bad_rows: per receiver row.
-    virtual void chebyshev(ChebyshevMethod method, const MomentTable& table, const Image& receivers,
-                           const ChebyshevParams& params, Image& out, int* bad_rows) = 0;
     // Cross-bilateral filter (kernels/bilateral.h) of `mask` into `out`.
     // `normals` is null unless params.use_normals; `taps` holds the window's
     // offsets as (dx, dy) pairs (separable: (d, d)), `weights` their spatial
@@ -54,11 +110,31 @@ public:
     // schedule sets. bad_rows: per depth row.
     virtual void build_encoded_table(const Image& depth, const EncodedSatParams& params, MomentTable& table,
                                      int* bad_rows) = 0;
-    enum class MomentMethod { Msm, MsmSoft, Evsm };
-    // `params` is complete; bad_rows: per receiver row.
-    virtual void moment_lookup(MomentMethod method, const MomentTable& table, const Image& receivers,
-                               const MomentParams& params, Image& out, int* bad_rows) = 0;
 };
+
+// The typed front end of BackendImpl::receiver_lookup: K's own Params, so a
+// call site cannot pass another entry's.
+template <KernelId K>
+void receiver_lookup(BackendImpl& backend, const LookupSource& source, const Image& receivers,
+                     const typename KernelTraits<K>::Params& params, Image& out, int* bad_rows)
+{
+    static_assert(is_lookup_shaped<K>, "receiver_lookup runs a lookup-shaped entry (kernel_id.h)");
+    backend.receiver_lookup(K, source, receivers, &params, out, bad_rows);
+}
+
+// A moment table's lookup: Float on a float table, Exact on an exact one (the
+// two PN_TABLE_VARIANTS of one description, kernels/dialect.h).
+template <KernelId Float, KernelId Exact>
+void table_lookup(BackendImpl& backend, const MomentTable& table, const Image& receivers,
+                  const typename KernelTraits<Float>::Params& params, Image& out, int* bad_rows)
+{
+    static_assert(std::is_same_v<typename KernelTraits<Float>::Params, typename KernelTraits<Exact>::Params>,
+                  "the twins of one lookup share their Params");
+    if (table.precision() == Precision::Float)
+        receiver_lookup<Float>(backend, table, receivers, params, out, bad_rows);
+    else
+        receiver_lookup<Exact>(backend, table, receivers, params, out, bad_rows);
+}
 
 pn_dims dims_of(const Image& image);
 pn_dims dims_of(const MomentTable& table);

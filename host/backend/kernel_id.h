@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <string_view>
 #include <tuple>
+#include <type_traits>
 
 #include "kernels/kernel_table.h"
 #include "kernels/params.h"
@@ -97,5 +98,45 @@ PN_KERNEL_TABLE(PN_KERNEL_TRAITS)
 #undef PN_OUT
 #undef PN_INOUT
 #undef PN_UNPAREN
+
+// A lookup-shaped entry reads one source per receiver: a pixel entry whose
+// buffers are (PN_IN(T) source, PN_IN(float) receivers, PN_OUT(float) out,
+// PN_OUT(int) bad_rows), T the source's element type (float: a float moment
+// table or a plain float image such as a raw depth map; uint: an exact moment
+// table). Every such entry runs through BackendImpl::receiver_lookup
+// (backend.h) with no per-method code in a backend.
+template <class Buffers>
+struct LookupBuffers : std::false_type {};
+template <class T>
+struct LookupBuffers<std::tuple<const T*, const float*, float*, int*>> : std::true_type {
+    using Source = T;
+};
+
+template <KernelId K>
+inline constexpr bool is_lookup_shaped =
+    KernelTraits<K>::shape == KernelShape::pixel && LookupBuffers<typename KernelTraits<K>::Buffers>::value;
+
+// The source's element type of lookup-shaped entry K.
+template <KernelId K>
+using LookupSourceOf = typename LookupBuffers<typename KernelTraits<K>::Buffers>::Source;
+
+template <KernelId K>
+using KernelConstant = std::integral_constant<KernelId, K>;
+
+// Calls visit(KernelConstant<id>{}), or otherwise() for a value that is no
+// entry (an int cast to KernelId): the one switch that turns a run-time
+// KernelId into a compile-time one, generated from the table.
+template <class Visitor, class Otherwise>
+decltype(auto) visit_kernel(KernelId id, Visitor&& visit, Otherwise&& otherwise)
+{
+    switch (id) {
+#define PN_KERNEL_VISIT(family, name, shape, Params, buffers) \
+    case KernelId::name:                                       \
+        return visit(KernelConstant<KernelId::name>{});
+        PN_KERNEL_TABLE(PN_KERNEL_VISIT)
+#undef PN_KERNEL_VISIT
+    }
+    return otherwise();
+}
 
 }  // namespace penumbra::detail

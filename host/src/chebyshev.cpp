@@ -1,12 +1,10 @@
 // Host operations vsm() and vssm(): validate, fill ChebyshevParams, dispatch.
 #include "penumbra/chebyshev.h"
 
-#include <algorithm>
 #include <cmath>
 #include <string>
-#include <vector>
 
-#include "host/backend/backend.h"
+#include "checked_lookup.h"
 #include "visibility_output.h"
 #include "window_limits.h"
 #include "penumbra/error.h"
@@ -23,16 +21,7 @@ void check_receivers(const std::string& op, const MomentTable& table, const Imag
             "receivers must have 3 channels (u, v, z), got " + std::to_string(receivers.channels()));
 }
 
-// Runs a lookup; the kernel flags rows with NaN or infinite receivers, and the
-// first one is then reported (the output is left unspecified).
-void run_checked(Context& context, detail::ChebyshevMethod method, const std::string& op, const MomentTable& table,
-                 const Image& receivers, const ChebyshevParams& p, Image& out)
-{
-    std::vector<int> bad_rows(std::size_t(receivers.height()), 0);
-    context.impl().chebyshev(method, table, receivers, p, out, bad_rows.data());
-    if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end())
-        require_finite(receivers, op, "the receivers image", "receivers");
-}
+using detail::KernelId;
 
 void check_filter(const std::string& op, float min_variance, float bleed)
 {
@@ -81,7 +70,8 @@ void vsm(Context& context, const MomentTable& table, const Image& receivers, con
     check_output(op, receivers, out);
     ChebyshevParams p = base_params(table, receivers, out, options.min_variance, options.bleed);
     p.radius = options.radius;
-    run_checked(context, detail::ChebyshevMethod::Vsm, op, table, receivers, p, out);
+    detail::checked_table_lookup<KernelId::vsm_float, KernelId::vsm_exact>(context.impl(), op, table, receivers, p,
+                                                                           out);
 }
 
 void vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options, Image& out)
@@ -93,7 +83,8 @@ void vssm(Context& context, const MomentTable& table, const Image& receivers, co
     ChebyshevParams p = base_params(table, receivers, out, options.min_variance, options.bleed);
     p.light_size = options.light_size;
     p.max_radius = detail::checked_search_radius(op, options.light_size, table);
-    run_checked(context, detail::ChebyshevMethod::Vssm, op, table, receivers, p, out);
+    detail::checked_table_lookup<KernelId::vssm_float, KernelId::vssm_exact>(context.impl(), op, table, receivers, p,
+                                                                             out);
 }
 
 }  // namespace penumbra

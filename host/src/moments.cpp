@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "host/backend/backend.h"
+#include "checked_lookup.h"
 #include "visibility_output.h"
 #include "window_limits.h"
 #include "penumbra/error.h"
@@ -16,7 +16,7 @@
 namespace penumbra {
 namespace {
 
-using detail::BackendImpl;
+using detail::KernelId;
 
 bool any_flagged(const std::vector<int>& rows) { return std::find(rows.begin(), rows.end(), 1) != rows.end(); }
 
@@ -147,13 +147,6 @@ void set_msm_biases(MomentParams& p, const std::string& op, Quantization q, std:
     p.pivot_floor = pivot_floor(q);
 }
 
-void run_checked(Context& context, BackendImpl::MomentMethod method, const std::string& op, const MomentTable& sums,
-                 const Image& receivers, const MomentParams& p, Image& out)
-{
-    std::vector<int> bad_rows(std::size_t(receivers.height()), 0);
-    context.impl().moment_lookup(method, sums, receivers, p, out, bad_rows.data());
-    if (any_flagged(bad_rows)) require_finite(receivers, op, "the receivers image", "receivers");
-}
 
 }  // namespace
 
@@ -257,7 +250,8 @@ void msm(Context& context, const MsmTable& table, const Image& receivers, const 
     MomentParams p = base_params(table.sums, receivers, out);
     set_msm_biases(p, op, table.quantization, options.moment_bias, options.depth_bias);
     p.radius = options.radius;
-    run_checked(context, BackendImpl::MomentMethod::Msm, op, table.sums, receivers, p, out);
+    detail::checked_table_lookup<KernelId::msm_float, KernelId::msm_exact>(context.impl(), op, table.sums, receivers, p,
+                                                                           out);
 }
 
 void msm_soft(Context& context, const MsmTable& table, const Image& receivers, const MsmSoftOptions& options,
@@ -271,7 +265,8 @@ void msm_soft(Context& context, const MsmTable& table, const Image& receivers, c
     set_msm_biases(p, op, table.quantization, options.moment_bias, options.depth_bias);
     p.light_size = options.light_size;
     p.max_radius = max_radius;
-    run_checked(context, BackendImpl::MomentMethod::MsmSoft, op, table.sums, receivers, p, out);
+    detail::checked_table_lookup<KernelId::msm_soft_float, KernelId::msm_soft_exact>(context.impl(), op, table.sums,
+                                                                                     receivers, p, out);
 }
 
 // ---- EVSM ----------------------------------------------------------------------
@@ -299,7 +294,8 @@ void evsm(Context& context, const EvsmTable& table, const Image& receivers, cons
     p.min_variance = options.min_variance;
     p.bleed = options.bleed;
     p.depth_bias = checked_bias(op, kDepthBiasRange, options.depth_bias);
-    run_checked(context, BackendImpl::MomentMethod::Evsm, op, table.sums, receivers, p, out);
+    detail::checked_table_lookup<KernelId::evsm_float, KernelId::evsm_exact>(context.impl(), op, table.sums, receivers,
+                                                                             p, out);
 }
 
 }  // namespace penumbra

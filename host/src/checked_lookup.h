@@ -1,0 +1,37 @@
+// The host side of every per-receiver lookup (detail::receiver_lookup,
+// host/backend/backend.h): the kernels flag rows holding a NaN or infinite
+// receiver, and the first one is then reported as the operation's Error (the
+// output is left unspecified). Shared by every lookup-shaped family
+// (chebyshev.cpp, moments.cpp, ...).
+#pragma once
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "host/backend/backend.h"
+#include "penumbra/image.h"
+
+namespace penumbra::detail {
+
+// lookup(bad_rows) runs the backend's lookup with one zeroed flag per receiver row.
+template <class Lookup>
+void checked_lookup(const std::string& op, const Image& receivers, Lookup&& lookup)
+{
+    std::vector<int> bad_rows(std::size_t(receivers.height()), 0);
+    lookup(bad_rows.data());
+    if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end())
+        require_finite(receivers, op, "the receivers image", "receivers");
+}
+
+// A moment table's lookup (Float / Exact twins), checked.
+template <KernelId Float, KernelId Exact>
+void checked_table_lookup(BackendImpl& backend, const std::string& op, const MomentTable& table,
+                          const Image& receivers, const typename KernelTraits<Float>::Params& params, Image& out)
+{
+    checked_lookup(op, receivers, [&](int* bad_rows) {
+        table_lookup<Float, Exact>(backend, table, receivers, params, out, bad_rows);
+    });
+}
+
+}  // namespace penumbra::detail

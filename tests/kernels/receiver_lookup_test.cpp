@@ -1,0 +1,226 @@
+// The generic per-receiver lookup (host/backend/backend.h, receiver_lookup):
+// every lookup-shaped entry of the kernel table runs through it on every
+// backend of this machine and agrees with the scalar oracle, and anything
+// else it is handed (an entry of another shape, a value that is no entry, a
+// source of the wrong element type) is refused with a typed Error, never a
+// crash.
+//
+// The reachability case of each entry is chosen by its Params and name
+// (lookup_case below); a lookup-shaped entry with no case fails the test, so a
+// new one is covered the day it joins the table. Tolerance: 2e-5 against the
+// scalar oracle on the same source, the widest of the per-family cross-backend
+// tolerances (EVSM's exp(), tests/kernels/moments_cross_backend_test.cpp);
+// SIMD is bit-identical for the Chebyshev and MSM entries there.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "host/backend/backend.h"
+#include "penumbra/chebyshev.h"
+#include "penumbra/moments.h"
+#include "support/backends.h"
+#include "support/errors.h"
+#include "support/maps.h"
+
+namespace penumbra {
+namespace {
+
+using detail::KernelId;
+using testing::backend_names;
+using testing::backend_test_name;
+using testing::expect_error;
+
+constexpr double kTolerance = 2e-5;
+
+// A 9x5 map; receivers 7x3 (odd, below every lane count) and 33x1 (around
+// 16 and 32 lanes) over its texel centres, depths straddling the map's.
+const Image& depth_map()
+{
+    static const Image map = testing::random_depth(9, 5, 17);
+    return map;
+}
+
+std::vector<Image> receiver_grids()
+{
+    return {testing::receivers_on_texels(7, 3, 9, 5, 0.1f, 0.9f, 5),
+            testing::receivers_on_texels(33, 1, 9, 5, 0.1f, 0.9f, 6)};
+}
+
+template <class Params>
+void set_dims(Params& p, const MomentTable& table, const Image& receivers, const Image& out)
+{
+    p.table = detail::dims_of(table);
+    p.receivers = detail::dims_of(receivers);
+    p.out = detail::dims_of(out);
+    p.limbs = table.limbs();
+}
+
+// The sources, built once by the scalar oracle: every backend reads the same.
+struct Sources {
+    explicit Sources(Context& oracle)
+        : chebyshev_float(build_moment_table(oracle, depth_map(), 2, Precision::Float)),
+          chebyshev_exact(build_moment_table(oracle, depth_map(), 2, Precision::Exact)),
+          msm_float(build_msm_table(oracle, depth_map(), Quantization::Bits32, Precision::Float)),
+          msm_exact(build_msm_table(oracle, depth_map(), Quantization::None, Precision::Exact)),
+          evsm_float(build_evsm_table(oracle, depth_map(), EvsmWarp{4, {}, {}, Quantization::Bits32}, Precision::Float)),
+          evsm_exact(build_evsm_table(oracle, depth_map(), EvsmWarp{4, {}, {}, Quantization::None}, Precision::Exact))
+    {
+    }
+    MomentTable chebyshev_float, chebyshev_exact;
+    MsmTable msm_float, msm_exact;
+    EvsmTable evsm_float, evsm_exact;
+};
+
+// One entry's run: fills `out` (the receivers' grid) on `context`.
+using LookupRun = std::function<void(Context& context, const Image& receivers, Image& out)>;
+
+template <KernelId K>
+LookupRun run_of(const MomentTable& table, typename detail::KernelTraits<K>::Params p)
+{
+    return [&table, p](Context& context, const Image& receivers, Image& out) mutable {
+        set_dims(p, table, receivers, out);
+        std::vector<int> bad_rows(std::size_t(receivers.height()), 0);
+        detail::receiver_lookup<K>(context.impl(), table, receivers, p, out, bad_rows.data());
+    };
+}
+
+// The Params of each lookup-shaped entry, as its operation fills them
+// (host/src/chebyshev.cpp, moments.cpp); an empty run for an entry with no case.
+template <KernelId K>
+LookupRun lookup_case(const Sources& s)
+{
+    using Params = typename detail::KernelTraits<K>::Params;
+    constexpr bool exact = std::is_same_v<detail::LookupSourceOf<K>, std::uint32_t>;
+    const std::string_view name = detail::kernel_name(K);
+    if constexpr (std::is_same_v<Params, ChebyshevParams>) {
+        const MomentTable& table = exact ? s.chebyshev_exact : s.chebyshev_float;
+        ChebyshevParams p{};
+        p.min_variance = kDefaultMinVariance;
+        p.bleed = 0.1f;
+        p.radius = 1;
+        p.light_size = 0.2f;
+        p.max_radius = exact ? kExactMaxRadius - 1 : 9;
+        if (name.starts_with("vsm_") || name.starts_with("vssm_")) return run_of<K>(table, p);
+    } else if constexpr (std::is_same_v<Params, MomentParams>) {
+        MomentParams p{};
+        p.radius = 1;
+        if (name.starts_with("evsm_")) {
+            const EvsmTable& t = exact ? s.evsm_exact : s.evsm_float;
+            p.channels = 4;
+            p.exponent_positive = t.positive;
+            p.exponent_negative = t.negative;
+            p.min_variance = kDefaultMinVariance;
+            return run_of<K>(t.sums, p);
+        }
+        const Quantization q = exact ? Quantization::None : Quantization::Bits32;
+        p.storage = PN_MOMENTS_POWER;
+        p.moment_bias = default_moment_bias(q);
+        p.depth_bias = default_depth_bias(q);
+        p.pivot_floor = exact ? 0x1p-45f : 0x1p-22f;
+        p.light_size = 0.2f;
+        p.max_radius = exact ? kExactMaxRadius - 1 : 9;
+        if (name.starts_with("msm_")) return run_of<K>((exact ? s.msm_exact : s.msm_float).sums, p);
+    }
+    return {};
+}
+
+using ReceiverLookup = ::testing::TestWithParam<std::string>;
+
+PN_BACKEND_TEST(ReceiverLookup, EveryLookupShapedEntryAgreesWithTheScalarOracle)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    Context& oracle = testing::scalar_oracle(backend);
+    const Sources sources(oracle);
+    int entries = 0;
+    for (int i = 0; i < detail::kKernelCount; ++i) {
+        const KernelId id = KernelId(i);
+        detail::visit_kernel(
+            id,
+            [&](auto k) {
+                constexpr KernelId K = decltype(k)::value;
+                if constexpr (detail::is_lookup_shaped<K>) {
+                    ++entries;
+                    const LookupRun run = lookup_case<K>(sources);
+                    if (!run) {
+                        ADD_FAILURE() << "lookup-shaped entry " << detail::kernel_name(K)
+                                      << " has no case in lookup_case(): add one";
+                        return;
+                    }
+                    int lit = 0, shadowed = 0;  // a case that shades nothing would prove nothing
+                    for (const Image& rx : receiver_grids()) {
+                        Image expected(rx.width(), rx.height(), 1), got(rx.width(), rx.height(), 1);
+                        run(oracle, rx, expected);
+                        run(ctx, rx, got);
+                        const testing::Difference d = testing::difference(got, expected);
+                        EXPECT_LE(d.max, kTolerance) << detail::kernel_name(K) << " " << rx.width() << "x"
+                                                     << rx.height() << " on " << backend;
+                        for (int y = 0; y < rx.height(); ++y)
+                            for (int x = 0; x < rx.width(); ++x) {
+                                const float v = expected.at(0, x, y);
+                                ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << detail::kernel_name(K) << ": oracle " << v;
+                                lit += v > 0.9f;
+                                shadowed += v < 0.1f;
+                            }
+                    }
+                    EXPECT_GT(lit, 0) << detail::kernel_name(K);
+                    EXPECT_GT(shadowed, 0) << detail::kernel_name(K);
+                }
+            },
+            [] { ADD_FAILURE() << "visit_kernel missed a table entry"; });
+    }
+    EXPECT_GE(entries, 10) << "the table's lookups: vsm, vssm, msm, msm_soft, evsm, float and exact";
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, ReceiverLookup, ::testing::ValuesIn(testing::non_scalar_backends()),
+                         backend_test_name);
+
+using ReceiverLookupRefusal = ::testing::TestWithParam<std::string>;
+
+PN_BACKEND_TEST(ReceiverLookupRefusal, RefusesWhatIsNoLookupWithATypedError)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    const Sources sources(ctx);
+    const Image rx = receiver_grids().front();
+    Image out(rx.width(), rx.height(), 1);
+    std::vector<int> bad_rows(std::size_t(rx.height()), 0);
+    ChebyshevParams p{};
+    set_dims(p, sources.chebyshev_exact, rx, out);
+    p.radius = 1;
+    auto run = [&](KernelId id, const detail::LookupSource& source) {
+        ctx.impl().receiver_lookup(id, source, rx, &p, out, bad_rows.data());
+    };
+    int refused = 0;
+    for (int i = 0; i < detail::kKernelCount; ++i) {
+        const KernelId id = KernelId(i);
+        const bool lookup = detail::visit_kernel(
+            id, [](auto k) { return detail::is_lookup_shaped<decltype(k)::value>; }, [] { return false; });
+        if (lookup) continue;
+        ++refused;
+        expect_error([&] { run(id, sources.chebyshev_exact); }, ErrorCategory::InvalidArgument, "receiver_lookup",
+                     std::string(detail::kernel_name(id)));
+        const Error e = testing::error_from([&] { run(id, sources.chebyshev_exact); }).value();
+        EXPECT_EQ(e.parameter(), "kernel");
+    }
+    EXPECT_GE(refused, 8) << "the table builds, bilateral and SDF entries are not lookups";
+    for (int outside : {-1, detail::kKernelCount, 1000})
+        expect_error([&] { run(KernelId(outside), sources.chebyshev_exact); }, ErrorCategory::InvalidArgument,
+                     "receiver_lookup", "number " + std::to_string(outside));
+    // A source of the wrong element type: an exact entry given a float table or
+    // an image, a float entry given an exact table.
+    expect_error([&] { run(KernelId::vsm_exact, sources.chebyshev_float); }, ErrorCategory::InvalidArgument,
+                 "receiver_lookup", "exact moment table");
+    expect_error([&] { run(KernelId::vsm_exact, depth_map()); }, ErrorCategory::InvalidArgument, "receiver_lookup",
+                 "exact moment table");
+    expect_error([&] { run(KernelId::vsm_float, sources.chebyshev_exact); }, ErrorCategory::InvalidArgument,
+                 "receiver_lookup", "float values");
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, ReceiverLookupRefusal, ::testing::ValuesIn(backend_names()), backend_test_name);
+
+}  // namespace
+}  // namespace penumbra
