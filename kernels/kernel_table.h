@@ -22,7 +22,7 @@
 #define PENUMBRA_KERNEL_TABLE_H
 
 /* The families, each an OpenCL program of its own. */
-#define PN_KERNEL_FAMILIES(F) F(moment_table) F(chebyshev) F(bilateral) F(sdf) F(moments)
+#define PN_KERNEL_FAMILIES(F) F(moment_table) F(chebyshev) F(bilateral) F(sdf) F(moments) F(pcf)
 
 #define PN_KERNEL_TABLE(X)                                                                                  \
     X(moment_table, sat_bands_float, task, SatParams,                                                    \
@@ -51,6 +51,9 @@
     X(moments, msm_soft_float, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))  \
     X(moments, msm_soft_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))   \
     X(moments, evsm_float, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
-    X(moments, evsm_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))
+    X(moments, evsm_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
+    X(pcf, pcf, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))                   \
+    X(pcf, pcf_gauss, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
+    X(pcf, pcf_disc, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
 
 #endif

@@ -146,6 +146,44 @@ typedef struct {
     float exponent_negative; /* evsm: c- */
 } MomentParams;
 
+/* The percentage-closer family (kernels/depth_bias.h, pcf.h, pcf_gauss.h,
+ * pcf_disc.h): lookups that read the shadow map itself, one float plane of
+ * depths in [0, 1], and compare each tap with the receiver. */
+#define PN_BIAS_CONSTANT 0       /* every tap: depth >= z - constant */
+#define PN_BIAS_SLOPE 1          /* constant + slope_scale x the receiver's depth step per texel, clamped */
+#define PN_BIAS_RECEIVER_PLANE 2 /* the tap's depth on the receiver's plane (Isidoro 2006), clamped */
+typedef struct {
+    int mode;          /* PN_BIAS_* */
+    float constant;    /* depth units: the constant mode's bias, the others' base */
+    float slope_scale; /* slope: bias per unit of the receiver's depth change across one texel */
+    float low;         /* slope, receiver-plane: the bias is clamped to [low, high] (Toy Story 3; --bias-min) */
+    float high;        /* --bias-max */
+} PcfBias;
+
+/* Receivers of the family: planes u, v, z and, for the slope and
+ * receiver-plane modes, dz/du, dz/dv (depth per unit of texture coordinate)
+ * and a plane flag (1: the derivatives hold; 0: they cross a depth
+ * discontinuity, use the constant bias); host/src/receiver_plane.cpp. */
+#define PN_PCF_PLANE_DZDU 3
+#define PN_PCF_PLANE_DZDV 4
+#define PN_PCF_PLANE_OK 5
+#define PN_PCF_PLANES_WITH_DERIVATIVES 6
+
+#define PN_PCF_MAX_GRID 16  /* pcf_gauss: grid side limit (a (n+1)^2 texel footprint) */
+#define PN_PCF_MAX_TAPS 256 /* pcf_disc: tap count limit */
+typedef struct {
+    pn_dims depth;     /* the shadow map: one plane */
+    pn_dims receivers; /* 3 planes (u, v, z), or 6 with the derivatives (above) */
+    pn_dims out;       /* one plane: visibility */
+    PcfBias bias;
+    int radius;        /* pcf: box radius in texels (>= 0) */
+    int grid;          /* pcf_gauss: taps per side (4: Toy Story 3) */
+    int taps;          /* pcf_disc: taps of the disc (1 .. PN_PCF_MAX_TAPS) */
+    int rotate;        /* pcf_disc: 1 rotates the pattern per receiver from a 4x4 tile */
+    float sigma;       /* pcf_gauss: the Gaussian's standard deviation, in tap spacings (texels) */
+    float disc_radius; /* pcf_disc: the disc's radius in texels (> 0) */
+} PcfParams;
+
 #ifdef __cplusplus
 }  /* namespace penumbra */
 #endif
