@@ -6,9 +6,9 @@
  *     depth(tx, ty) >= z - beta,
  * z the receiver's light depth, beta the bias (depth units) of PcfBias.mode:
  *
- *   PN_BIAS_CONSTANT        beta = constant, unclamped (the `shade` window
+ *   PN_BIAS_CONSTANT        beta = depth_bias, unclamped (the `shade` window
  *                           contract: depth >= z - depth_bias).
- *   PN_BIAS_SLOPE           beta = clamp(constant + slope_scale * s, low, high),
+ *   PN_BIAS_SLOPE           beta = clamp(depth_bias + slope_scale * s, low, high),
  *                           s = |dz/du| / W + |dz/dv| / H: the depth change of
  *                           the receiver's plane across one texel (both axes),
  *                           the classic slope-scaled bias written in texels of
@@ -24,13 +24,13 @@
  *                           surfaces still need a minimum, grazing ones get a
  *                           huge bias that needs a maximum; Siggraph 2010
  *                           course notes, "Dynamic depth bias"):
- *                               beta = clamp(constant - (dz/du du + dz/dv dv), low, high).
+ *                               beta = clamp(depth_bias - (dz/du du + dz/dv dv), low, high).
  *
  * The derivatives (planes PN_PCF_PLANE_DZDU, _DZDV of the receivers, depth per
  * unit of texture coordinate) come from the host: finite differences on the
  * receivers' grid or channels of the receivers' file (host/src/receiver_plane.cpp
  * states the discontinuity test). Where they cross a depth discontinuity the
- * plane flag (PN_PCF_PLANE_OK) is 0 and the tap falls back to beta = constant,
+ * plane flag (PN_PCF_PLANE_OK) is 0 and the tap falls back to beta = depth_bias,
  * as Toy Story 3 falls back to a static bias where derivatives cross cascades.
  *
  * Non-finite receiver values flag the row (bad_rows) and are read as 0, so
@@ -69,7 +69,7 @@ PN_FN PcfReceiver pcf_load_receiver(PN_GLOBAL const float* receivers, pn_dims d,
     r.dzdu = 0.0f;
     r.dzdv = 0.0f;
     r.plane = r.z != r.z; /* all false */
-    r.reference = r.z - b.constant;
+    r.reference = r.z - b.depth_bias;
     if (b.mode == PN_BIAS_CONSTANT) return r;
 
     r.dzdu = pcf_checked_plane(receivers, d, PN_PCF_PLANE_DZDU, x, y, bad_rows);
@@ -77,7 +77,7 @@ PN_FN PcfReceiver pcf_load_receiver(PN_GLOBAL const float* receivers, pn_dims d,
     r.plane = pcf_checked_plane(receivers, d, PN_PCF_PLANE_OK, x, y, bad_rows) > 0.5f;
     if (b.mode == PN_BIAS_SLOPE) {
         const pn_float step = pn_abs(r.dzdu) / (float)map.width + pn_abs(r.dzdv) / (float)map.height;
-        const pn_float beta = pn_clamp(b.constant + b.slope_scale * step, b.low, b.high);
+        const pn_float beta = pn_clamp(b.depth_bias + b.slope_scale * step, b.low, b.high);
         r.reference = pn_select(r.plane, r.z - beta, r.reference);
     }
     return r;
@@ -90,7 +90,7 @@ PN_FN pn_float pcf_tap_reference(PcfReceiver r, PcfBias b, pn_dims map, pn_float
     if (b.mode != PN_BIAS_RECEIVER_PLANE) return r.reference;
     const pn_float du = (tx + 0.5f) / (float)map.width - r.u;
     const pn_float dv = (ty + 0.5f) / (float)map.height - r.v;
-    const pn_float beta = pn_clamp(b.constant - (r.dzdu * du + r.dzdv * dv), b.low, b.high);
+    const pn_float beta = pn_clamp(b.depth_bias - (r.dzdu * du + r.dzdv * dv), b.low, b.high);
     return pn_select(r.plane, r.z - beta, r.reference);
 }
 

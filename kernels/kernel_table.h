@@ -54,6 +54,8 @@
     X(moments, evsm_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
     X(pcf, pcf, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))                   \
     X(pcf, pcf_gauss, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
-    X(pcf, pcf_disc, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
+    X(pcf, pcf_disc, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
+    X(pcf, pcss, pixel, SoftPcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))              \
+    X(pcf, burley, pixel, SoftPcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
 
 #endif

@@ -154,7 +154,7 @@ typedef struct {
 #define PN_BIAS_RECEIVER_PLANE 2 /* the tap's depth on the receiver's plane (Isidoro 2006), clamped */
 typedef struct {
     int mode;          /* PN_BIAS_* */
-    float constant;    /* depth units: the constant mode's bias, the others' base */
+    float depth_bias;  /* depth units: the constant mode's bias, the others' base ("constant" is an OpenCL keyword) */
     float slope_scale; /* slope: bias per unit of the receiver's depth change across one texel */
     float low;         /* slope, receiver-plane: the bias is clamped to [low, high] (Toy Story 3; --bias-min) */
     float high;        /* --bias-max */
@@ -183,6 +183,23 @@ typedef struct {
     float sigma;       /* pcf_gauss: the Gaussian's standard deviation, in tap spacings (texels) */
     float disc_radius; /* pcf_disc: the disc's radius in texels (> 0) */
 } PcfParams;
+
+/* The soft members of the family (kernels/pcss.h, kernels/burley.h), on the
+ * Hammersley disc (kernels/hammersley.h). Radii and light_size in texture units. */
+#define PN_SOFT_MAX_SAMPLES 1024 /* taps per pass (penumbra/soft_pcf.h, kMaxSoftSamples) */
+typedef struct {
+    pn_dims depth;       /* the shadow map: one plane */
+    pn_dims receivers;   /* as PcfParams */
+    pn_dims out;         /* one plane: visibility */
+    PcfBias bias;        /* the family's bias; burley: bias.depth_bias is the cone's base bias */
+    int blocker_samples; /* taps of the blocker search (1 .. PN_SOFT_MAX_SAMPLES) */
+    int filter_samples;  /* taps of the filter */
+    float light_size;    /* pcss: search diameter, and L in w = L (z - z_b) / z_b */
+    float min_radius;    /* burley: filter radius at contact */
+    float max_radius;    /* burley: depth-pass radius R and the widest filter */
+    float bias_slope;    /* burley: the cone's slope, depth per texture unit */
+    float falloff;       /* burley: opacity falloff distance in depth units; 0 = off */
+} SoftPcfParams;
 
 #ifdef __cplusplus
 }  /* namespace penumbra */

@@ -41,6 +41,20 @@ Image run_evsm(Context& context, const Image& map, const Image& receivers, const
     return evsm(context, table, receivers, EvsmOptions{s.radius, s.min_variance, s.bleed, s.depth_bias.value_or(0.0f)});
 }
 
+Image run_pcss(Context& context, const Image& map, const Image& receivers, const MethodSettings& s)
+{
+    const PcssOptions options{s.light_size, s.blocker_samples, s.filter_samples,
+                              s.depth_bias.value_or(PcssOptions{}.depth_bias)};
+    return pcss(context, map, receivers, options);
+}
+
+Image run_burley(Context& context, const Image& map, const Image& receivers, const MethodSettings& s)
+{
+    const BurleyOptions options{s.min_radius, s.max_radius, s.depth_bias.value_or(BurleyOptions{}.base_bias),
+                                s.bias_slope, s.falloff, s.blocker_samples, s.filter_samples};
+    return burley(context, map, receivers, options);
+}
+
 }  // namespace
 
 const std::vector<Method>& methods()
@@ -58,6 +72,11 @@ const std::vector<Method>& methods()
          {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, run_evsm<2>},
         {"evsm4", "exponential variance shadow maps, both warps (Lauritzen & McCool 2008)",
          {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, run_evsm<4>},
+        {"pcss", "percentage-closer soft shadows: blocker search, width, PCF on a disc (Fernando 2005)",
+         {"light-size", "depth-bias", "blocker-samples", "filter-samples", "preset"}, run_pcss},
+        {"burley", "soft shadows on the bias cone, weighted blocker depth (Burley, Disney)",
+         {"min-radius", "max-radius", "depth-bias", "bias-slope", "falloff", "blocker-samples", "filter-samples"},
+         run_burley},
     };
     return table;
 }

@@ -107,7 +107,7 @@ TEST_F(MomentsCli, BadOptionsNameTheOption)
     expect_bad_option("--method evsm4 --exponents 0,1", "--exponents");
     expect_bad_option("--method evsm2 --moment-bias 1e-4", "--moment-bias: applies to msm and msm-soft");
     expect_bad_option("--method msm --exponents 3,2", "--exponents: applies to evsm2 and evsm4");
-    expect_bad_option("--method vsm --depth-bias 1e-3", "--depth-bias: applies to msm, msm-soft, evsm2 and evsm4");
+    expect_bad_option("--method vsm --depth-bias 1e-3", "--depth-bias: applies to msm, msm-soft, evsm2, evsm4");
     expect_bad_option("--method msm-shadows", "--method");
     expect_bad_option("--method msm --radius 200", "radius 200 exceeds 127");
 }

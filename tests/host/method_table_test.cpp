@@ -30,7 +30,7 @@ TEST(MethodTable, ListsEachMethodOnceWithKnownOptions)
             EXPECT_TRUE(known) << m.name << " reads " << option;
         }
     }
-    EXPECT_EQ(names, (std::set<std::string>{"vsm", "vssm", "msm", "msm-soft", "evsm2", "evsm4"}));
+    EXPECT_EQ(names, (std::set<std::string>{"vsm", "vssm", "msm", "msm-soft", "evsm2", "evsm4", "pcss", "burley"}));
 }
 
 // A value just outside the range: below an open or closed lower bound, above an upper one.

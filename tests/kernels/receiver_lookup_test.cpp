@@ -89,6 +89,19 @@ LookupRun run_of(const MomentTable& table, typename detail::KernelTraits<K>::Par
     };
 }
 
+// A lookup of the raw depth map (the percentage-closer family reads no table).
+template <KernelId K>
+LookupRun map_run_of(const Image& map, typename detail::KernelTraits<K>::Params p)
+{
+    return [&map, p](Context& context, const Image& receivers, Image& out) mutable {
+        p.depth = detail::dims_of(map);
+        p.receivers = detail::dims_of(receivers);
+        p.out = detail::dims_of(out);
+        std::vector<int> bad_rows(std::size_t(receivers.height()), 0);
+        detail::receiver_lookup<K>(context.impl(), map, receivers, p, out, bad_rows.data());
+    };
+}
+
 // The Params of each lookup-shaped entry, as its operation fills them
 // (host/src/chebyshev.cpp, moments.cpp); an empty run for an entry with no case.
 template <KernelId K>
@@ -125,6 +138,26 @@ LookupRun lookup_case(const Sources& s)
         p.light_size = 0.2f;
         p.max_radius = exact ? kExactMaxRadius - 1 : 9;
         if (name.starts_with("msm_")) return run_of<K>((exact ? s.msm_exact : s.msm_float).sums, p);
+    } else if constexpr (std::is_same_v<Params, PcfParams>) {
+        PcfParams p{};
+        p.bias = PcfBias{PN_BIAS_CONSTANT, 1e-3f, 1.0f, 0.0f, 0.02f};
+        p.radius = 1;
+        p.grid = 4;
+        p.sigma = 1.0f;
+        p.taps = 16;
+        p.disc_radius = 2.0f;
+        p.rotate = 1;
+        if (name.starts_with("pcf")) return map_run_of<K>(depth_map(), p);
+    } else if constexpr (std::is_same_v<Params, SoftPcfParams>) {
+        SoftPcfParams p{};  // host/src/soft_pcf.cpp; discs a few texels wide on the 9x5 map
+        p.bias = PcfBias{PN_BIAS_CONSTANT, 1e-3f, 1.0f, 0.0f, 0.02f};
+        p.blocker_samples = 16;
+        p.filter_samples = 24;
+        p.light_size = 0.3f;
+        p.min_radius = 0.02f;
+        p.max_radius = 0.3f;
+        p.bias_slope = 2.0f;
+        if (name == "pcss" || name == "burley") return map_run_of<K>(depth_map(), p);
     }
     return {};
 }

@@ -21,6 +21,7 @@
 #include "penumbra/image.h"
 #include "penumbra/moments.h"
 #include "penumbra/parameter_range.h"
+#include "penumbra/soft_pcf.h"
 
 namespace penumbra {
 
@@ -34,6 +35,10 @@ struct MethodSettings {
     std::optional<float> moment_bias{}, depth_bias{};  // unset: the method's default
     Quantization quantization = Quantization::None;
     std::optional<float> positive_exponent{}, negative_exponent{};
+    // pcss and burley (penumbra/soft_pcf.h).
+    int blocker_samples = PcssOptions{}.blocker_samples, filter_samples = PcssOptions{}.filter_samples;
+    float min_radius = BurleyOptions{}.min_radius, max_radius = BurleyOptions{}.max_radius;
+    float bias_slope = BurleyOptions{}.bias_slope, falloff = BurleyOptions{}.falloff;
 };
 
 struct Method;
