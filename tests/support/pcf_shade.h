@@ -9,7 +9,6 @@
 #include "host/backend/kernel_id.h"
 #include "kernels/params.h"
 #include "penumbra/image.h"
-#include "simd/cpu_schedule.h"
 #include "support/backends.h"
 
 namespace penumbra::testing {
@@ -17,27 +16,25 @@ namespace penumbra::testing {
 enum class PcfKernel { Box, Gauss, Disc };
 
 template <detail::KernelId K>
-Image pcf_shade_cpu(const std::string& isa, const Image& map, const Image& receivers, PcfParams p)
+Image pcf_shade_on(Context& context, const Image& map, const Image& receivers, PcfParams p)
 {
     Image out(receivers.width(), receivers.height(), 1);
     std::vector<int> bad_rows(std::size_t(receivers.height()), 0);
     p.depth = detail::dims_of(map);
     p.receivers = detail::dims_of(receivers);
     p.out = detail::dims_of(out);
-    cpu::launch_pixels<K>(cpu::kernels_for(isa), out.width(), out.height(), map.plane(0), receivers.plane(0),
-                          out.plane(0), bad_rows.data(), p);
+    detail::receiver_lookup<K>(context.impl(), map, receivers, p, out, bad_rows.data());
     return out;
 }
 
 inline Image pcf_shade(const std::string& backend, PcfKernel kernel, const Image& map, const Image& receivers,
                        const PcfParams& p)
 {
-    if (backend == "opencl") throw SkipBackend{"the generic lookup is not merged yet"};
-    const std::string& isa = backend;  // the CPU backends are named by their ISA
+    Context& context = PN_CONTEXT_OR_SKIP(backend);
     switch (kernel) {
-    case PcfKernel::Box: return pcf_shade_cpu<detail::KernelId::pcf>(isa, map, receivers, p);
-    case PcfKernel::Gauss: return pcf_shade_cpu<detail::KernelId::pcf_gauss>(isa, map, receivers, p);
-    case PcfKernel::Disc: return pcf_shade_cpu<detail::KernelId::pcf_disc>(isa, map, receivers, p);
+    case PcfKernel::Box: return pcf_shade_on<detail::KernelId::pcf>(context, map, receivers, p);
+    case PcfKernel::Gauss: return pcf_shade_on<detail::KernelId::pcf_gauss>(context, map, receivers, p);
+    case PcfKernel::Disc: return pcf_shade_on<detail::KernelId::pcf_disc>(context, map, receivers, p);
     }
     return {};
 }

@@ -47,6 +47,24 @@ inline constexpr ParameterRange kNegativeExponentRange{
     "negative-exponent", "negative exponent", kPositiveExponentRange.low, kPositiveExponentRange.high, true,
     false, kPositiveExponentRange.why_high};
 
+// The percentage-closer family (penumbra/pcf.h). The grid and tap limits are
+// the kernels' own (kernels/params.h, PN_PCF_MAX_GRID and PN_PCF_MAX_TAPS;
+// host/src/pcf.cpp checks that they agree).
+inline constexpr ParameterRange kPcfGridRange{
+    "grid", "grid", 1, 16, false, false,
+    ", the largest grid the kernel's weight arrays hold (a 17x17 texel footprint); use pcf-disc for wider filters"};
+// Below 0.1 texel the Gaussian of an even grid underflows to 0 at every tap.
+inline constexpr ParameterRange kPcfSigmaRange{"sigma", "sigma", 0.1, kNoUpperBound, false, true};
+inline constexpr ParameterRange kPcfTapsRange{
+    "taps", "taps", 1, 256, false, false,
+    ", the stated limit of the disc (its 16 rotations already spread 4096 distinct taps over 4x4 receivers); "
+    "use fewer taps"};
+inline constexpr ParameterRange kPcfDiscRadiusRange{"disc-radius", "disc radius", 0, kNoUpperBound, true, true};
+inline constexpr ParameterRange kSlopeScaleRange{"slope-scale", "slope scale", 0, kNoUpperBound, false, true};
+// Depth units: a bias beyond the whole depth range [0, 1] means nothing.
+inline constexpr ParameterRange kBiasMinRange{"bias-min", "bias-min", -1, 1, false, false};
+inline constexpr ParameterRange kBiasMaxRange{"bias-max", "bias-max", -1, 1, false, false};
+
 // "[0, 1)", ">= 0", "(0, 10]".
 std::string describe(const ParameterRange& range);
 // False for NaN.
