@@ -43,15 +43,15 @@ Image run_evsm(Context& context, const Image& map, const Image& receivers, const
 
 Image run_pcss(Context& context, const Image& map, const Image& receivers, const MethodSettings& s)
 {
-    const PcssOptions options{s.light_size, s.blocker_samples, s.filter_samples,
-                              s.depth_bias.value_or(PcssOptions{}.depth_bias)};
+    PcssOptions options{s.light_size, s.blocker_samples, s.filter_samples};
+    options.bias.constant = s.depth_bias.value_or(options.bias.constant);
     return pcss(context, map, receivers, options);
 }
 
 Image run_burley(Context& context, const Image& map, const Image& receivers, const MethodSettings& s)
 {
-    const BurleyOptions options{s.min_radius, s.max_radius, s.depth_bias.value_or(BurleyOptions{}.base_bias),
-                                s.bias_slope, s.falloff, s.blocker_samples, s.filter_samples};
+    BurleyOptions options{s.min_radius, s.max_radius, s.bias_slope, s.falloff, s.blocker_samples, s.filter_samples};
+    options.bias.constant = s.depth_bias.value_or(options.bias.constant);
     return burley(context, map, receivers, options);
 }
 

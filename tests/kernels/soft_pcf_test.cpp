@@ -399,7 +399,7 @@ TEST(SoftPcfOperations, BadOptionsAndInputsNameTheParameter)
     expect_parameter(with_pcss([](PcssOptions& o) { o.blocker_samples = -1; }), "blocker-samples");
     expect_parameter(with_pcss([](PcssOptions& o) { o.filter_samples = kMaxSoftSamples + 1; }), "filter-samples");
     expect_parameter(with_pcss([](PcssOptions& o) { o.light_size = -0.1f; }), "light-size");
-    expect_parameter(with_pcss([](PcssOptions& o) { o.depth_bias = NAN; }), "depth-bias");
+    expect_parameter(with_pcss([](PcssOptions& o) { o.bias.constant = NAN; }), "depth-bias");
     expect_parameter(with_burley([](BurleyOptions& o) { o.min_radius = 0.02f, o.max_radius = 0.01f; }), "min-radius");
     expect_parameter(with_burley([](BurleyOptions& o) { o.bias_slope = -1; }), "bias-slope");
     expect_parameter(with_burley([](BurleyOptions& o) { o.falloff = -1; }), "falloff");

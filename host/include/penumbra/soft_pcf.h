@@ -12,6 +12,7 @@
 #include "penumbra/context.h"
 #include "penumbra/image.h"
 #include "penumbra/parameter_range.h"
+#include "penumbra/pcf.h"
 
 namespace penumbra {
 
@@ -36,7 +37,8 @@ struct PcssOptions {
     float light_size = 0.02f;  // texture units: the blocker search's diameter, and L in w = L (z - z_b) / z_b
     int blocker_samples = 16;
     int filter_samples = 24;
-    float depth_bias = 5e-4f;  // a tap is lit where its depth >= z - depth_bias
+    // The family's bias (penumbra/pcf.h): a tap is lit where its depth >= z - beta.
+    DepthBias bias{BiasMode::Constant, 5e-4f};
 };
 
 // Named sample counts, as `--preset` (blocker / filter taps): the counts the
@@ -50,13 +52,16 @@ inline constexpr PcssPreset kPcssPresets[] = {{"hdrp", 16, 24}, {"godot-ultra", 
 struct BurleyOptions {
     float min_radius = 0.0005f;  // texture units: the filter radius at contact
     float max_radius = 0.01f;    // the depth pass's radius R, and the widest filter
-    float base_bias = 0.0f;      // the cone's tip
     float bias_slope = 2.0f;     // depth units per texture unit (the paper's 2.0)
     float falloff = 0.0f;        // opacity 1 - (z - z_b) / falloff, clamped to [0, 1]; 0 = off
     int blocker_samples = 16;
     int filter_samples = 24;
+    // The family's bias at the cone's tip (Burley's base bias: 0 or near it).
+    DepthBias bias{BiasMode::Constant, 0.0f};
 };
 
+// Both take the family's bias modes: with slope or receiver-plane the
+// receivers' derivatives come from pcf_receivers() (penumbra/pcf.h).
 Image pcss(Context& context, const Image& map, const Image& receivers, const PcssOptions& options);
 Image burley(Context& context, const Image& map, const Image& receivers, const BurleyOptions& options);
 
