@@ -13,6 +13,7 @@
 // missing from this build is listed as such. The backend is the context's
 // default (Auto).
 // usage: soft_shadow_figures contact|depth [view WxH = 480x360] [truth samples = 256]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -41,6 +42,8 @@ std::vector<Entry> entries(const ref::Scene& scene)
     return {{"pcf", {{"radius", "2"}}},
             {"pcss", {{"light-size", light}}},
             {"burley", {{"max-radius", light}}},
+            {"burley", {{"max-radius", light}, {"bias-slope", "0.5"}}},
+            {"burley", {{"max-radius", light}, {"bias-slope", "0"}, {"depth-bias", "5e-4"}}},
             {"vssm", {{"light-size", light}}},
             {"msm-soft", {{"light-size", light}, {"depth-bias", "3e-4"}}}};
 }
@@ -79,6 +82,13 @@ Image contact_band(const ref::Scene& scene, const ref::Receivers& rx, int map_si
     return band;
 }
 
+std::string setting_of(const Entry& e)
+{
+    std::string setting;
+    for (const auto& [k, v] : e.options) setting += k + "=" + v + " ";
+    return setting;
+}
+
 int count(const Image& mask)
 {
     int n = 0;
@@ -107,8 +117,12 @@ void contact_figure(int view_w, int view_h, int samples)
     const ref::Receivers rx = ref::render_receivers(scene, view_w, view_h);
     const Image truth = ref::ground_truth(scene, rx, {int(std::lround(std::sqrt(samples)))});
     const Image band = contact_band(scene, rx, map_size, 5.0);
-    std::printf("contact, %d^2 map, %dx%d receivers, truth %d rays; band: %d receivers within 5 texels of a contact\n",
-                map_size, view_w, view_h, samples, count(band));
+    double band_truth = 0;
+    for (int y = 0; y < band.height(); ++y)
+        for (int x = 0; x < band.width(); ++x) band_truth += band.at(0, x, y) * truth.at(0, x, y);
+    std::printf("contact, %d^2 map, %dx%d receivers, truth %d rays; band: %d receivers within 5 texels of a contact, "
+                "mean truth %.3f\n",
+                map_size, view_w, view_h, samples, count(band), band_truth / std::max(1, count(band)));
     std::printf("| method | setting | RMSE in band | RMSE all | leak all | over-darkening all |\n|---|---|---|---|---|---|\n");
     for (const Entry& e : entries(scene)) {
         if (!available(e)) {
@@ -116,10 +130,8 @@ void contact_figure(int view_w, int view_h, int samples)
             continue;
         }
         const Image estimate = shade(context, e, map, rx);
-        std::string setting;
-        for (const auto& [k, v] : e.options) setting += k + "=" + v + " ";
-        std::printf("| %s | %s| %.4f | %.4f | %.4f | %.4f |\n", e.name, setting.c_str(),
-                    ref::rmse(estimate, truth, &band), ref::rmse(estimate, truth, &rx.mask),
+        std::printf("| %s | %s| %.4f | %.4f | %.4f | %.4f |\n", e.name,
+                    setting_of(e).c_str(), ref::rmse(estimate, truth, &band), ref::rmse(estimate, truth, &rx.mask),
                     ref::light_leaking(estimate, truth, &rx.mask), ref::over_darkening(estimate, truth, &rx.mask));
     }
 }
@@ -132,13 +144,14 @@ void depth_figure(int view_w, int view_h, int samples)
         const ref::Receivers rx = ref::render_receivers(scene, view_w, view_h);
         const Image truth = ref::ground_truth(scene, rx, {int(std::lround(std::sqrt(samples)))});
         std::printf("\n%s, %d^2 map, %dx%d receivers, truth %d rays\n", name, scene.map_size, view_w, view_h, samples);
-        std::printf("| method | depth | over-darkening | leak | RMSE |\n|---|---|---|---|---|\n");
+        std::printf("| method | setting | depth | over-darkening | leak | RMSE |\n|---|---|---|---|---|---|\n");
         for (const ref::ShadowDepth depth : {ref::ShadowDepth::First, ref::ShadowDepth::Midpoint, ref::ShadowDepth::Second}) {
             const Image map = ref::render_shadow_map(scene, scene.map_size, scene.map_size, depth);
             for (const Entry& e : entries(scene)) {
                 if (!available(e)) continue;
                 const Image estimate = shade(context, e, map, rx);
-                std::printf("| %s | %s | %.4f | %.4f | %.4f |\n", e.name, ref::shadow_depth_name(depth),
+                std::printf("| %s | %s| %s | %.4f | %.4f | %.4f |\n", e.name, setting_of(e).c_str(),
+                            ref::shadow_depth_name(depth),
                             ref::over_darkening(estimate, truth, &rx.mask), ref::light_leaking(estimate, truth, &rx.mask),
                             ref::rmse(estimate, truth, &rx.mask));
             }
