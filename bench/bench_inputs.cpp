@@ -4,7 +4,11 @@
 #include <cstring>
 #include <map>
 #include <new>
+#include <string_view>
 #include <utility>
+#include <vector>
+
+#include "simd/cpu_kernels.h"  // supported_isas()
 
 namespace penumbra::bench {
 namespace {
@@ -69,13 +73,18 @@ const Image& receivers(int size)
     return cached(cache, size, [&] { return make_receivers(size); });
 }
 
+std::string best_cpu_backend()
+{
+    const std::vector<std::string_view> isas = cpu::supported_isas();
+    return isas.empty() ? std::string("scalar") : std::string(isas.back());
+}
+
 const MomentTable& moment_table(int size, Precision precision)
 {
     static std::map<int, MomentTable> cache;
     const int key = size * 2 + (precision == Precision::Exact);
     return cached(cache, key, [&] {
-        Context simd(ContextOptions{Backend::Simd, ""});
-        return build_moment_table(simd, depth_map(size), 2, precision);
+        return build_moment_table(context(best_cpu_backend()), depth_map(size), 2, precision);
     });
 }
 

@@ -27,7 +27,11 @@ constexpr std::size_t table_bytes_per_texel(int planes) { return 4 + 4 * std::si
 
 const Image& depth_map(int size);   // size x size, 1 channel
 const Image& receivers(int size);   // size x size, 3 channels (u, v, z)
-// Built once with the default SIMD backend; lookups of every backend read it.
+// The best CPU backend here, by name: the last (best) ISA of supported_isas()
+// (simd/cpu_kernels.h: built and run by this CPU), or "scalar" where there is
+// none. The tables every backend's lookups read are built with it.
+std::string best_cpu_backend();
+// Built once with best_cpu_backend(); lookups of every backend read it.
 const MomentTable& moment_table(int size, Precision precision);
 
 // Two touched, 64-byte aligned buffers of `bytes` each, for the memcpy case.

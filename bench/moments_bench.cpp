@@ -1,34 +1,50 @@
-// Benchmarks of the moment family (kernels/msm.h, msm_soft.h, evsm.h,
-// encoded_table.h): reconstruction throughput at 4096^2 receivers per backend
-// and ISA, 1 and 2 threads (tbb::task_arena), and the tables' builds, in the
-// same run so that SIMD / scalar and SIMD / OpenCL are ratios of one run
+// Benchmarks of the method table's methods (host/src/methods.cpp,
+// penumbra/methods.h): each method's two steps timed alone at 4096^2 per
+// backend and ISA, 1 and 2 threads (tbb::task_arena), in the same run so that
+// SIMD / scalar and SIMD / OpenCL are ratios of one run
 // (bench/moments_ratios.py prints them; docs/moments.md has the command and
-// the figures). Case names follow penumbra_bench's `op/key:value/.../threads:n`.
+// the figures). A method added to the table is benchmarked here with no edit.
+//
+// Cases, named as penumbra_bench's `op/key:value/.../threads:n`:
+//  - the shade step (Method::shade into an output allocated once; the
+//    prepared table built once, untimed, by the best CPU backend): op is the
+//    method's name ('-' -> '_') with `_r8` for a box method (one that reads
+//    `radius`; radius 8 like vsm_r8) and also `_r0`.. `_r2` on the exact
+//    table (the small windows, issue 9); a method with a light reads the
+//    default light size, like vssm;
+//  - the build step (Method::prepare): op `<name>_table`, once per distinct
+//    build step (msm-soft shares msm's table: timed once, as msm_table).
+// Storages, as `precision:`: exact (the default limb tables), 16bit (the
+// opt-in optimized quantization, for a method that reads `quantize`) and
+// float (the legacy float tables, quantization 32); `map` for a method that
+// reads the shadow map itself (prepare_map: no table, no build case).
+// Methods that share VSM's build step (the two-moment table: vsm, vssm) are
+// bench/penumbra_bench.cpp's own cases (vsm_r8, vssm, table: three sizes,
+// beside memcpy and OpenCV) and are not registered again here.
 //
 // Inputs: bench/bench_inputs.h's scene (a lit ground under a grid of square
 // occluders covering 36% of the map, receivers at every texel centre between
-// them), so that the figures compare with vsm_r8 and vssm. Box methods use
-// radius 8 like vsm_r8; msm_soft the default light size, like vssm.
+// them), so that the figures compare with vsm_r8 and vssm.
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <exception>
 #include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "bench_inputs.h"
-#include "penumbra/moments.h"
+#include "penumbra/methods.h"
 
 namespace penumbra::bench {
 namespace {
 
 constexpr int kSize = 4096;
 constexpr int kRadius = 8;
+const int kSmallRadii[] = {0, 1, 2};
 
-// The storages: exact limb tables (the default), MSM's opt-in 16-bit
-// optimized quantization (EVSM has none: its 16-bit tables cannot keep the
-// method's tolerance) and the legacy float tables.
 struct Storage {
     const char* name;
     Quantization quantization;
@@ -37,29 +53,32 @@ struct Storage {
 const Storage kStorages[] = {{"exact", Quantization::None, Precision::Exact},
                              {"16bit", Quantization::Bits16, Precision::Exact},
                              {"float", Quantization::Bits32, Precision::Float}};
+// A method that reads the shadow map itself (prepare_map) has no storage choice.
+const Storage kMapItself{"map", Quantization::None, Precision::Exact};
 
-// Tables built once with the SIMD backend; every backend's lookups read them.
-const MsmTable& msm_table(const Storage& s)
+bool reads(const Method& m, std::string_view option)
 {
-    static std::map<std::string, MsmTable> cache;
-    auto it = cache.find(s.name);
-    if (it == cache.end())
-        it = cache.emplace(s.name, build_msm_table(context("avx2"), depth_map(kSize), s.quantization, s.precision))
-                 .first;
-    return it->second;
+    return std::find(m.reads.begin(), m.reads.end(), option) != m.reads.end();
 }
 
-const EvsmTable& evsm_table(const Storage& s, int channels)
+MethodSettings settings_for(const Storage& s, int radius)
 {
-    static std::map<std::string, EvsmTable> cache;
-    const std::string key = std::string(s.name) + std::to_string(channels);
+    MethodSettings settings;
+    settings.quantization = s.quantization;
+    settings.precision = s.precision;
+    settings.radius = radius;
+    return settings;
+}
+
+// A method's prepared table, built once per build step and settings by the
+// best CPU backend; every backend's shade step reads it.
+const PreparedMap& prepared(const Method& m, const Storage& s, const MethodSettings& settings)
+{
+    static std::map<std::tuple<const void*, std::string>, PreparedMap> cache;
+    const auto key = std::make_tuple(reinterpret_cast<const void*>(m.prepare), std::string(s.name));
     auto it = cache.find(key);
-    if (it == cache.end()) {
-        EvsmWarp warp;
-        warp.channels = channels;
-        warp.quantization = s.quantization;
-        it = cache.emplace(key, build_evsm_table(context("avx2"), depth_map(kSize), warp, s.precision)).first;
-    }
+    if (it == cache.end())
+        it = cache.emplace(key, m.prepare(context(best_cpu_backend()), depth_map(kSize), settings)).first;
     return it->second;
 }
 
@@ -86,57 +105,92 @@ void timed(benchmark::State& state, const std::string& backend, int threads, Fn&
     state.counters["pixels/s"] = benchmark::Counter(double(kSize) * kSize * n, benchmark::Counter::kIsRate);
 }
 
-void lookup(benchmark::State& state, const std::string& op, const std::string& backend, const Storage& s,
-            int threads)
+void shade_step(benchmark::State& state, const Method& m, const MethodSettings& settings, const std::string& backend,
+                const Storage& s, int threads)
 {
     const Image& rx = receivers(kSize);
     Image out(kSize, kSize, 1);
     timed(state, backend, threads, [&](Context& ctx) {
-        if (op.compare(0, 5, "msm_r") == 0) msm(ctx, msm_table(s), rx, MsmOptions{op[5] - '0', {}, {}}, out);
-        else if (op == "msm_soft") msm_soft(ctx, msm_table(s), rx, MsmSoftOptions{}, out);
-        else evsm(ctx, evsm_table(s, op == "evsm2_r8" ? 2 : 4), rx, EvsmOptions{kRadius}, out);
+        m.shade(ctx, prepared(m, s, settings), rx, settings, out);
         benchmark::DoNotOptimize(out.plane(0));
     });
 }
 
-void table(benchmark::State& state, const std::string& op, const std::string& backend, const Storage& s,
-           int threads)
+void build_step(benchmark::State& state, const Method& m, const MethodSettings& settings, const std::string& backend,
+                int threads)
 {
     timed(state, backend, threads, [&](Context& ctx) {
-        if (op == "msm_table") {
-            MsmTable t = build_msm_table(ctx, depth_map(kSize), s.quantization, s.precision);
-            benchmark::DoNotOptimize(t.sums.storage());
-        } else {
-            EvsmTable t = build_evsm_table(ctx, depth_map(kSize), EvsmWarp{4, {}, {}, s.quantization}, s.precision);
-            benchmark::DoNotOptimize(t.sums.storage());
-        }
+        const PreparedMap p = m.prepare(ctx, depth_map(kSize), settings);
+        benchmark::DoNotOptimize(&p);
     });
 }
 
+// The storages a method takes: 16-bit only where it reads `quantize`.
+std::vector<const Storage*> storages_of(const Method& m)
+{
+    if (m.prepare == prepare_map) return {&kMapItself};
+    std::vector<const Storage*> list;
+    for (const Storage& s : kStorages)
+        if (s.quantization != Quantization::Bits16 || reads(m, "quantize")) list.push_back(&s);
+    return list;
+}
+
+// (op, radius) of a method's shade cases on storage `s`.
+std::vector<std::pair<std::string, int>> shade_ops(const Method& m, const Storage& s)
+{
+    std::string name = m.name;
+    std::replace(name.begin(), name.end(), '-', '_');
+    if (!reads(m, "radius")) return {{name, kRadius}};
+    std::vector<std::pair<std::string, int>> ops;
+    if (s.quantization == Quantization::None)
+        for (int r : kSmallRadii) ops.emplace_back(name + "_r" + std::to_string(r), r);
+    ops.emplace_back(name + "_r" + std::to_string(kRadius), kRadius);
+    return ops;
+}
+
+// Registers `run` on every backend: 1 and 2 threads on SIMD, scalar 1, OpenCL PoCL's own.
+template <class Run>
+void register_on_backends(const std::string& op, const Storage& s, Run run)
+{
+    for (const std::string& backend : testing::backend_names())
+        for (int threads : {1, 2}) {
+            if ((backend == "scalar" || backend == "opencl") && threads == 2) continue;
+            const int arena = backend == "opencl" ? 0 : threads;
+            std::string name = op + "/backend:" + backend + "/precision:" + s.name + "/size:" + std::to_string(kSize);
+            if (arena) name += "/threads:" + std::to_string(threads);
+            benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) { run(st, backend, arena); })
+                ->UseRealTime()
+                ->Unit(benchmark::kMillisecond);
+        }
+}
+
 // Registered at static initialisation, as BENCHMARK() does, with names built
-// from the ISAs this CPU has. Scalar runs 1 thread, OpenCL PoCL's own.
+// from the method table and the backends of this machine.
 [[maybe_unused]] const bool registered = [] {
-    // msm_r0 .. msm_r2: the small windows (issue 9: no slower than before it).
-    for (const char* op : {"msm_r0", "msm_r1", "msm_r2", "msm_r8", "msm_soft", "evsm2_r8", "evsm4_r8", "msm_table",
-                           "evsm4_table"})
-        for (const Storage& s : kStorages)
-            for (const std::string& backend : testing::backend_names())
-                for (int threads : {1, 2}) {
-                    // EVSM has no 16-bit storage any more (see kStorages).
-                    if (s.quantization == Quantization::Bits16 && std::string(op).find("evsm") == 0) continue;
-                    if ((backend == "scalar" || backend == "opencl") && threads == 2) continue;
-                    const bool small = std::string(op).compare(0, 5, "msm_r") == 0 && std::string(op) != "msm_r8";
-                    if (small && std::string(s.name) != "exact") continue;
-                    const int arena = backend == "opencl" ? 0 : threads;
-                    std::string name = std::string(op) + "/backend:" + backend + "/precision:" + s.name +
-                                       "/size:" + std::to_string(kSize);
-                    if (arena) name += "/threads:" + std::to_string(threads);
-                    const bool is_table = std::string(op).find("_table") != std::string::npos;
-                    benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) {
-                        if (is_table) table(st, op, backend, s, arena);
-                        else lookup(st, op, backend, s, arena);
-                    })->UseRealTime()->Unit(benchmark::kMillisecond);
-                }
+    const Method& vsm = find_method("vsm");
+    std::vector<const void*> timed_builds;
+    for (const Method& m : methods()) {
+        if (m.prepare == vsm.prepare) continue;  // bench/penumbra_bench.cpp's cases
+        for (const Storage* s : storages_of(m))
+            for (const auto& [op, radius] : shade_ops(m, *s)) {
+                const MethodSettings settings = settings_for(*s, radius);
+                register_on_backends(op, *s, [&m, settings, s](benchmark::State& st, const std::string& b, int t) {
+                    shade_step(st, m, settings, b, *s, t);
+                });
+            }
+        const void* build = reinterpret_cast<const void*>(m.prepare);
+        if (m.prepare == prepare_map) continue;  // no table: nothing to time
+        if (std::find(timed_builds.begin(), timed_builds.end(), build) != timed_builds.end()) continue;
+        timed_builds.push_back(build);
+        std::string op = std::string(m.name) + "_table";
+        std::replace(op.begin(), op.end(), '-', '_');
+        for (const Storage* s : storages_of(m)) {
+            const MethodSettings settings = settings_for(*s, kRadius);
+            register_on_backends(op, *s, [&m, settings](benchmark::State& st, const std::string& b, int t) {
+                build_step(st, m, settings, b, t);
+            });
+        }
+    }
     return true;
 }();
 

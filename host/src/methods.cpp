@@ -1,82 +1,113 @@
-// The method table (penumbra/methods.h): one entry per shading method. Each
-// run builds the method's own table and shades; the options' parsing and help
-// are in method_options.cpp.
+// The method table (penumbra/methods.h): one entry per shading method, its
+// build step (the method's own table) and its shade step; the options'
+// parsing and help are in method_options.cpp.
 #include "penumbra/methods.h"
 
 #include "penumbra/error.h"
+#include "visibility_output.h"
 
 namespace penumbra {
 namespace {
 
-Image run_vsm(Context& context, const Image& map, const Image& receivers, const MethodSettings& s)
+// Chebyshev methods: the two-moment table (exact, the default).
+PreparedMap prepare_moment_table(Context& context, const Image& map, const MethodSettings& s)
 {
-    const MomentTable table = build_moment_table(context, map, 2);
-    return vsm(context, table, receivers, VsmOptions{s.radius, s.min_variance, s.bleed});
+    return PreparedMap(map, build_moment_table(context, map, 2, s.precision));
 }
 
-Image run_vssm(Context& context, const Image& map, const Image& receivers, const MethodSettings& s)
+void shade_vsm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+               Image& out)
 {
-    const MomentTable table = build_moment_table(context, map, 2);
-    return vssm(context, table, receivers, VssmOptions{s.light_size, s.min_variance, s.bleed});
+    vsm(context, prepared.table<MomentTable>(), receivers, VsmOptions{s.radius, s.min_variance, s.bleed}, out);
 }
 
-Image run_msm(Context& context, const Image& map, const Image& receivers, const MethodSettings& s)
+void shade_vssm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+                Image& out)
 {
-    const MsmTable table = build_msm_table(context, map, s.quantization);
-    return msm(context, table, receivers, MsmOptions{s.radius, s.moment_bias, s.depth_bias});
+    vssm(context, prepared.table<MomentTable>(), receivers, VssmOptions{s.light_size, s.min_variance, s.bleed},
+         out);
 }
 
-Image run_msm_soft(Context& context, const Image& map, const Image& receivers, const MethodSettings& s)
+PreparedMap prepare_msm_table(Context& context, const Image& map, const MethodSettings& s)
 {
-    const MsmTable table = build_msm_table(context, map, s.quantization);
-    return msm_soft(context, table, receivers, MsmSoftOptions{s.light_size, s.moment_bias, s.depth_bias});
+    return PreparedMap(map, build_msm_table(context, map, s.quantization, s.precision));
+}
+
+void shade_msm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+               Image& out)
+{
+    msm(context, prepared.table<MsmTable>(), receivers, MsmOptions{s.radius, s.moment_bias, s.depth_bias}, out);
+}
+
+void shade_msm_soft(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+                    Image& out)
+{
+    msm_soft(context, prepared.table<MsmTable>(), receivers, MsmSoftOptions{s.light_size, s.moment_bias, s.depth_bias},
+             out);
 }
 
 // EVSM2 keeps the positive warp only (2 channels), EVSM4 both (4).
 template <int Channels>
-Image run_evsm(Context& context, const Image& map, const Image& receivers, const MethodSettings& s)
+PreparedMap prepare_evsm_table(Context& context, const Image& map, const MethodSettings& s)
 {
-    const EvsmWarp warp{Channels, s.positive_exponent, s.negative_exponent, Quantization::None};
-    const EvsmTable table = build_evsm_table(context, map, warp);
-    return evsm(context, table, receivers, EvsmOptions{s.radius, s.min_variance, s.bleed, s.depth_bias.value_or(0.0f)});
+    const EvsmWarp warp{Channels, s.positive_exponent, s.negative_exponent, s.quantization};
+    return PreparedMap(map, build_evsm_table(context, map, warp, s.precision));
 }
 
-Image run_pcss(Context& context, const Image& map, const Image& receivers, const MethodSettings& s)
+void shade_evsm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+                Image& out)
+{
+    evsm(context, prepared.table<EvsmTable>(), receivers,
+         EvsmOptions{s.radius, s.min_variance, s.bleed, s.depth_bias.value_or(0.0f)}, out);
+}
+
+// The soft members of the percentage-closer family read the map itself.
+void shade_pcss(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+                Image& out)
 {
     PcssOptions options{s.light_size, s.blocker_samples, s.filter_samples};
     options.bias.constant = s.depth_bias.value_or(options.bias.constant);
-    return pcss(context, map, receivers, options);
+    pcss(context, prepared.map(), receivers, options, out);
 }
 
-Image run_burley(Context& context, const Image& map, const Image& receivers, const MethodSettings& s)
+void shade_burley(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+                  Image& out)
 {
     BurleyOptions options{s.min_radius, s.max_radius, s.bias_slope, s.falloff, s.blocker_samples, s.filter_samples};
     options.bias.constant = s.depth_bias.value_or(options.bias.constant);
-    return burley(context, map, receivers, options);
+    burley(context, prepared.map(), receivers, options, out);
 }
 
 }  // namespace
+
+PreparedMap prepare_map(Context&, const Image& map, const MethodSettings&) { return PreparedMap(map); }
+
+Image Method::run(Context& context, const Image& map, const Image& receivers, const MethodSettings& settings) const
+{
+    const PreparedMap prepared = prepare(context, map, settings);
+    return detail::visibility_output(receivers, [&](Image& out) { shade(context, prepared, receivers, settings, out); });
+}
 
 const std::vector<Method>& methods()
 {
     static const std::vector<Method> table = {
         {"vsm", "variance shadow maps: Chebyshev bound over a box window (Donnelly & Lauritzen 2006)",
-         {"radius", "min-variance", "bleed"}, run_vsm},
+         {"radius", "min-variance", "bleed"}, prepare_moment_table, shade_vsm},
         {"vssm", "variance soft shadow maps: blocker search sized by the light (Yang et al. 2010)",
-         {"light-size", "min-variance", "bleed"}, run_vssm},
+         {"light-size", "min-variance", "bleed"}, prepare_moment_table, shade_vssm},
         {"msm", "moment shadow maps: four moments, Hamburger bound (Peters & Klein 2015)",
-         {"radius", "moment-bias", "depth-bias", "quantize"}, run_msm},
+         {"radius", "moment-bias", "depth-bias", "quantize"}, prepare_msm_table, shade_msm},
         {"msm-soft", "moment soft shadows: blocker search on four moments (Peters et al. 2016)",
-         {"light-size", "moment-bias", "depth-bias", "quantize"}, run_msm_soft},
+         {"light-size", "moment-bias", "depth-bias", "quantize"}, prepare_msm_table, shade_msm_soft},
         {"evsm2", "exponential variance shadow maps, positive warp (Lauritzen & McCool 2008)",
-         {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, run_evsm<2>},
+         {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, prepare_evsm_table<2>, shade_evsm},
         {"evsm4", "exponential variance shadow maps, both warps (Lauritzen & McCool 2008)",
-         {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, run_evsm<4>},
+         {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, prepare_evsm_table<4>, shade_evsm},
         {"pcss", "percentage-closer soft shadows: blocker search, width, PCF on a disc (Fernando 2005)",
-         {"light-size", "depth-bias", "blocker-samples", "filter-samples", "preset"}, run_pcss},
+         {"light-size", "depth-bias", "blocker-samples", "filter-samples", "preset"}, prepare_map, shade_pcss},
         {"burley", "soft shadows on the bias cone, weighted blocker depth (Burley, Disney)",
          {"min-radius", "max-radius", "depth-bias", "bias-slope", "falloff", "blocker-samples", "filter-samples"},
-         run_burley},
+         prepare_map, shade_burley},
     };
     return table;
 }

@@ -40,8 +40,8 @@ PcfBias kernel_bias(const DepthBias& b)
 // Checks the map and the bias, prepares the receivers (derivative planes when
 // the bias mode reads them, pcf_receivers) and runs K.
 template <detail::KernelId K>
-Image run(Context& context, const std::string& op, const Image& map, const Image& receivers, const DepthBias& bias,
-          SoftPcfParams p)
+void run(Context& context, const std::string& op, const Image& map, const Image& receivers, const DepthBias& bias,
+         SoftPcfParams p, Image& out)
 {
     check_map(op, map);
     require(!receivers.empty(), op, "receivers", "the receivers image is empty (0 pixels)");
@@ -52,20 +52,31 @@ Image run(Context& context, const std::string& op, const Image& map, const Image
     const bool derivatives = bias.mode != BiasMode::Constant;
     const Image planes = derivatives ? pcf_receivers(receivers, bias, op) : Image{};
     const Image& prepared = derivatives ? planes : receivers;
-    return detail::visibility_output(receivers, [&](Image& out) {
-        p.depth = detail::dims_of(map);
-        p.receivers = detail::dims_of(prepared);
-        p.out = detail::dims_of(out);
-        p.bias = kernel_bias(bias);
-        detail::checked_lookup(op, prepared, [&](int* bad_rows) {
-            detail::receiver_lookup<K>(context.impl(), map, prepared, p, out, bad_rows);
-        });
+    require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), op,
+            "the output must be a 1-channel image of the receivers' size (" + std::to_string(receivers.width()) +
+                "x" + std::to_string(receivers.height()) + ")");
+    p.depth = detail::dims_of(map);
+    p.receivers = detail::dims_of(prepared);
+    p.out = detail::dims_of(out);
+    p.bias = kernel_bias(bias);
+    detail::checked_lookup(op, prepared, [&](int* bad_rows) {
+        detail::receiver_lookup<K>(context.impl(), map, prepared, p, out, bad_rows);
     });
 }
 
 }  // namespace
 
 Image pcss(Context& context, const Image& map, const Image& receivers, const PcssOptions& options)
+{
+    return detail::visibility_output(receivers, [&](Image& out) { pcss(context, map, receivers, options, out); });
+}
+
+Image burley(Context& context, const Image& map, const Image& receivers, const BurleyOptions& options)
+{
+    return detail::visibility_output(receivers, [&](Image& out) { burley(context, map, receivers, options, out); });
+}
+
+void pcss(Context& context, const Image& map, const Image& receivers, const PcssOptions& options, Image& out)
 {
     const std::string op = "pcss";
     check(kPcssLightSizeRange, options.light_size, op);
@@ -74,10 +85,10 @@ Image pcss(Context& context, const Image& map, const Image& receivers, const Pcs
     p.blocker_samples = options.blocker_samples;
     p.filter_samples = options.filter_samples;
     p.light_size = options.light_size;
-    return run<detail::KernelId::pcss>(context, op, map, receivers, options.bias, p);
+    run<detail::KernelId::pcss>(context, op, map, receivers, options.bias, p, out);
 }
 
-Image burley(Context& context, const Image& map, const Image& receivers, const BurleyOptions& options)
+void burley(Context& context, const Image& map, const Image& receivers, const BurleyOptions& options, Image& out)
 {
     const std::string op = "burley";
     check(kMinRadiusRange, options.min_radius, op);
@@ -95,7 +106,7 @@ Image burley(Context& context, const Image& map, const Image& receivers, const B
     p.max_radius = options.max_radius;
     p.bias_slope = options.bias_slope;
     p.falloff = options.falloff;
-    return run<detail::KernelId::burley>(context, op, map, receivers, options.bias, p);
+    run<detail::KernelId::burley>(context, op, map, receivers, options.bias, p, out);
 }
 
 }  // namespace penumbra

@@ -1,5 +1,6 @@
 // The method table: every shading method of the library as one entry (name,
-// one line of description, the options it reads, a run function), and every
+// one line of description, the options it reads, its two steps: build from
+// the shadow map, shade the receivers), and every
 // option once (name, value, default, range, help). `penumbra shade`, `penumbra
 // demo` and the benchmarks take method names, option parsing and help from
 // here, and nowhere else (docs/architecture.md, "Adding a method").
@@ -10,9 +11,12 @@
 // operations check against.
 #pragma once
 
+#include <any>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -29,6 +33,10 @@ namespace penumbra {
 // the operations' own (VsmOptions, MsmOptions, ...).
 struct MethodSettings {
     int radius = VsmOptions{}.radius;
+    // The table's element type. Not an option of the tool: the float tables
+    // (with quantization Bits32) are kept for comparison, and benchmarks and
+    // tests set it.
+    Precision precision = Precision::Exact;
     float min_variance = kDefaultMinVariance;
     float bleed = 0.0f;
     float light_size = VssmOptions{}.light_size;
@@ -42,6 +50,32 @@ struct MethodSettings {
 };
 
 struct Method;
+
+// What a method's build step made of a shadow map, for its shade step: its
+// table (a MomentTable, MsmTable, EvsmTable, ...), or none for a method that
+// reads the map itself. It refers to the map, which must outlive it.
+class PreparedMap {
+public:
+    explicit PreparedMap(const Image& map) : map_(&map) {}
+    template <class Table>
+    PreparedMap(const Image& map, Table&& table)
+        : map_(&map), table_(std::make_shared<const std::decay_t<Table>>(std::forward<Table>(table)))
+    {
+    }
+
+    const Image& map() const { return *map_; }
+    // The table the build step made, as its own type (throws std::bad_any_cast
+    // for another: a method's two steps disagree, a defect).
+    template <class Table>
+    const Table& table() const
+    {
+        return *std::any_cast<const std::shared_ptr<const Table>&>(table_);
+    }
+
+private:
+    const Image* map_;
+    std::any table_;  // std::shared_ptr<const Table>: shared, never copied
+};
 
 struct MethodOption {
     const char* name;    // "radius": the parameter its check names
@@ -63,10 +97,21 @@ struct Method {
     const char* name;      // "vsm"
     const char* summary;   // one line
     std::vector<std::string_view> reads;  // the options it uses, by name
-    // Builds the method's table from `map` (one channel, depth in [0, 1]) and
-    // returns visibility on the receivers' grid (`receivers`: u, v, z).
-    Image (*run)(Context& context, const Image& map, const Image& receivers, const MethodSettings& settings);
+    // The build step: the method's table from `map` (one channel, depth in
+    // [0, 1]), or none (prepare_map) for a method that reads the map itself.
+    PreparedMap (*prepare)(Context& context, const Image& map, const MethodSettings& settings);
+    // The shade step: visibility on the receivers' grid (`receivers`: u, v,
+    // z) into `out` (one channel, the receivers' size).
+    void (*shade)(Context& context, const PreparedMap& prepared, const Image& receivers,
+                  const MethodSettings& settings, Image& out);
+
+    // Both steps, into a new image, as `penumbra shade` and `penumbra demo`
+    // run a method; a benchmark times each step alone.
+    Image run(Context& context, const Image& map, const Image& receivers, const MethodSettings& settings) const;
 };
+
+// The build step of a method that reads the shadow map itself: keeps no table.
+PreparedMap prepare_map(Context& context, const Image& map, const MethodSettings& settings);
 
 const std::vector<Method>& methods();
 const std::vector<MethodOption>& method_options();

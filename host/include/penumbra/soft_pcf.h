@@ -65,4 +65,9 @@ struct BurleyOptions {
 Image pcss(Context& context, const Image& map, const Image& receivers, const PcssOptions& options);
 Image burley(Context& context, const Image& map, const Image& receivers, const BurleyOptions& options);
 
+// The same into an existing 1-channel image of the receivers' size (no
+// allocation for the constant bias). If they throw, `out` is left unspecified.
+void pcss(Context& context, const Image& map, const Image& receivers, const PcssOptions& options, Image& out);
+void burley(Context& context, const Image& map, const Image& receivers, const BurleyOptions& options, Image& out);
+
 }  // namespace penumbra
