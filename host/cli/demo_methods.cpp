@@ -103,6 +103,50 @@ std::vector<SweepPoint> burley_sweep(const reference::Scene& scene, int map_size
     return sweep;
 }
 
+// The percentage-closer family on the receiver-plane bias (the mode that
+// needs no per-scene tuning, Toy Story 3), each sweeping its footprint: the
+// box radius, the Gaussian grid's sigma, the disc's tap count at 3 texels.
+MethodSettings pcf_settings()
+{
+    MethodSettings s;
+    s.bias_mode = BiasMode::ReceiverPlane;
+    return s;
+}
+
+std::vector<SweepPoint> pcf_sweep()
+{
+    std::vector<SweepPoint> sweep;
+    for (int radius : {1, 3, 6}) {
+        MethodSettings s = pcf_settings();
+        s.radius = radius;
+        sweep.push_back({"r=" + std::to_string(radius), s});
+    }
+    return sweep;
+}
+
+std::vector<SweepPoint> pcf_gauss_sweep()
+{
+    std::vector<SweepPoint> sweep;
+    for (float sigma : {0.5f, 1.0f, 2.0f}) {
+        MethodSettings s = pcf_settings();
+        s.sigma = sigma;
+        sweep.push_back({format("4x4 s=%.2g", sigma), s});
+    }
+    return sweep;
+}
+
+std::vector<SweepPoint> pcf_disc_sweep()
+{
+    std::vector<SweepPoint> sweep;
+    for (int taps : {8, 16, 32}) {
+        MethodSettings s = pcf_settings();
+        s.taps = taps;
+        s.disc_radius = 3.0f;
+        sweep.push_back({"N=" + std::to_string(taps), s});
+    }
+    return sweep;
+}
+
 // Distance-field shadows trace the scene itself, not the shadow map: the
 // grid is what an engine bakes offline, so it is baked once per scene (not
 // timed) at a node budget that grows with the demo's map size; the analytic
@@ -188,7 +232,9 @@ std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size
 {
     DemoMethod sdf_grid = sdf_method(scene, map_size, SdfSource::Grid);
     const DemoMethod vsm = table_method("vsm", radius_sweep());
+    const DemoMethod pcf_disc = table_method("pcf-disc", pcf_disc_sweep());
     const std::vector<int> vsm_small_radii = {0, 1}, sdf_classic = {0};  // blurred: the noisiest settings
+    const std::vector<int> disc_few_taps = {0, 1};  // Toy Story 3's noisy PCF, then the cross-bilateral
     return {vsm,
             blurred_method(vsm, "vsm+blur", vsm_small_radii),
             table_method("vssm", light_sweep(scene, map_size)),
@@ -200,7 +246,11 @@ std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size
             table_method("burley", burley_sweep(scene, map_size)),
             sdf_grid,
             blurred_method(sdf_grid, "sdf+blur", sdf_classic),
-            sdf_method(scene, map_size, SdfSource::Analytic)};
+            sdf_method(scene, map_size, SdfSource::Analytic),
+            table_method("pcf", pcf_sweep()),
+            table_method("pcf-gauss", pcf_gauss_sweep()),
+            pcf_disc,
+            blurred_method(pcf_disc, "pcf-disc+blur", disc_few_taps)};
 }
 
 }  // namespace penumbra::cli

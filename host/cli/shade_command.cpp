@@ -70,9 +70,9 @@ struct ShadeFiles {
     }
     const std::string& path = is_map ? files.shadow_map : files.receivers;
     if (!e.pixel()) throw Error(e.category(), "shade", path + ": " + e.message());
-    static const char* const kReceiverChannels[] = {"u", "v", "z"};
+    static const char* const kReceiverChannels[] = {"u", "v", "z", "dzdu", "dzdv"};
     const BadPixel& bad = *e.pixel();
-    const std::string where = path + ": channel " + (is_map ? "Z" : kReceiverChannels[bad.channel % 3]) +
+    const std::string where = path + ": channel " + (is_map ? "Z" : kReceiverChannels[bad.channel % 5]) +
                               " at pixel (" + std::to_string(bad.x) + ", " + std::to_string(bad.y) + ") is " +
                               std::to_string(bad.value);
     throw Error(ErrorCategory::InvalidData, "shade",
@@ -110,7 +110,7 @@ int shade_command(const std::vector<std::string>& argv)
         const Method& method = find_method(method_name);
         const MethodSettings settings = parse_method_settings(method, given_options(args));
         const Image map = read_input(files.shadow_map, {"Z"}, "shadow map");
-        const Image receivers = read_input(files.receivers, {"u", "v", "z"}, "receivers image");
+        const Image receivers = read_input(files.receivers, receiver_channels(settings), "receivers image");
         Context context(ContextOptions{backend, {}});
         for (const std::string& warning : context.warnings())
             std::cerr << "penumbra shade: warning: " << warning << "\n";

@@ -94,6 +94,36 @@ void set_preset(const Method& m, const std::string& text, MethodSettings& s)
     throw bad_value(m, "preset", "'" + text + "' is not a preset (" + names + ")");
 }
 
+// One of a list of words: its index in `words`.
+template <std::size_t N>
+int parse_word(const Method& m, std::string_view parameter, const std::string& text, const char* const (&words)[N])
+{
+    std::string names;
+    for (std::size_t i = 0; i < N; ++i) {
+        if (text == words[i]) return int(i);
+        names += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + std::string(words[i]);
+    }
+    throw bad_value(m, parameter, "'" + text + "' is not " + names);
+}
+
+void set_bias_mode(const Method& m, const std::string& text, MethodSettings& s)
+{
+    static const char* const kModes[] = {"constant", "slope", "receiver-plane"};  // BiasMode's order
+    s.bias_mode = BiasMode(parse_word(m, "bias-mode", text, kModes));
+}
+
+void set_derivatives(const Method& m, const std::string& text, MethodSettings& s)
+{
+    static const char* const kSources[] = {"differences", "channels"};  // DerivativeSource's order
+    s.derivatives = DerivativeSource(parse_word(m, "bias-derivatives", text, kSources));
+}
+
+void set_rotation(const Method& m, const std::string& text, MethodSettings& s)
+{
+    static const char* const kRotations[] = {"none", "tile"};
+    s.rotate = parse_word(m, "rotation", text, kRotations) == 1;
+}
+
 const MethodOption* find_option(std::string_view name)
 {
     for (const MethodOption& o : method_options())
@@ -138,7 +168,7 @@ const std::vector<MethodOption>& method_options()
          set_float<&S::moment_bias, kMomentBiasRange>},
         {"depth-bias", "D",
          "subtracted from receiver depth (sloped ones need about half a texel's depth change more)",
-         "3.05e-5 = two 16-bit steps (msm*), 0 (evsm*), 5e-4 (pcss), 0 = the cone's tip (burley)",
+         "3.05e-5 = two 16-bit steps (msm*), 0 (evsm*), 1e-3 (pcf*), 5e-4 (pcss), 0 = the cone's tip (burley)",
          &kDepthBiasRange, false,
          set_float<&S::depth_bias, kDepthBiasRange>},
         {"quantize", "16",
@@ -160,6 +190,29 @@ const std::vector<MethodOption>& method_options()
          &kBiasSlopeRange, false, set_float<&S::bias_slope, kBiasSlopeRange>},
         {"falloff", "D", "shadow opacity 1 - (z - z_blocker) / D, clamped (0 = off)", "0", &kFalloffRange, false,
          set_float<&S::falloff, kFalloffRange>},
+        {"bias-mode", "M",
+         "constant (depth >= z - depth-bias), slope (+ slope-scale x the depth step per texel) or receiver-plane "
+         "(each tap on the receiver's plane, Isidoro 2006); slope and receiver-plane clamp to [bias-min, bias-max]",
+         "constant", nullptr, false, set_bias_mode},
+        {"bias-min", "B", "lower clamp of the slope and receiver-plane biases (Toy Story 3)", "0", &kBiasMinRange,
+         false, set_float<&S::bias_min, kBiasMinRange>},
+        {"bias-max", "B", "upper clamp of the slope and receiver-plane biases (Toy Story 3)", "0.02", &kBiasMaxRange,
+         false, set_float<&S::bias_max, kBiasMaxRange>},
+        {"slope-scale", "S", "slope bias per unit of the receiver's depth change across one texel", "1",
+         &kSlopeScaleRange, false, set_float<&S::slope_scale, kSlopeScaleRange>},
+        {"bias-derivatives", "D",
+         "dz/du, dz/dv of slope and receiver-plane: differences (receivers' neighbours) or channels (RX.exr dzdu, "
+         "dzdv)",
+         "differences", nullptr, false, set_derivatives},
+        {"grid", "N", "taps per side of the Gaussian grid (4: Toy Story 3's 4x4)", "4", &kPcfGridRange, false,
+         set_int<&S::grid, kPcfGridRange>},
+        {"sigma", "S", "the grid's Gaussian standard deviation, texels", "1", &kPcfSigmaRange, false,
+         set_float<&S::sigma, kPcfSigmaRange>},
+        {"taps", "N", "taps of the Vogel disc", "16", &kPcfTapsRange, false, set_int<&S::taps, kPcfTapsRange>},
+        {"disc-radius", "R", "the disc's radius, texels", "2.5", &kPcfDiscRadiusRange, false,
+         set_float<&S::disc_radius, kPcfDiscRadiusRange>},
+        {"rotation", "tile|none", "the disc rotated per receiver from Toy Story 3's 4x4 tile, or not (bands)",
+         "tile", nullptr, false, set_rotation},
     };
     return options;
 }

@@ -61,12 +61,46 @@ void shade_evsm(Context& context, const PreparedMap& prepared, const Image& rece
          EvsmOptions{s.radius, s.min_variance, s.bleed, s.depth_bias.value_or(0.0f)}, out);
 }
 
-// The soft members of the percentage-closer family read the map itself.
+// The percentage-closer family reads the map itself (prepare_map).
+DepthBias depth_bias_of(const MethodSettings& s)
+{
+    return DepthBias{s.bias_mode, s.depth_bias.value_or(kPcfDefaultDepthBias), s.slope_scale, s.bias_min,
+                     s.bias_max, s.derivatives};
+}
+
+void shade_pcf(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+               Image& out)
+{
+    out = pcf(context, prepared.map(), receivers, PcfOptions{s.radius, depth_bias_of(s)});
+}
+
+void shade_pcf_gauss(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+                     Image& out)
+{
+    out = pcf_gauss(context, prepared.map(), receivers, PcfGaussOptions{s.grid, s.sigma, depth_bias_of(s)});
+}
+
+void shade_pcf_disc(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+                    Image& out)
+{
+    out = pcf_disc(context, prepared.map(), receivers,
+                   PcfDiscOptions{s.taps, s.disc_radius, s.rotate, depth_bias_of(s)});
+}
+
+// The soft members of the percentage-closer family read the map itself,
+// under the family's bias options with their own default constant.
+DepthBias family_bias(const MethodSettings& s, float default_constant)
+{
+    DepthBias b = depth_bias_of(s);
+    b.constant = s.depth_bias.value_or(default_constant);
+    return b;
+}
+
 void shade_pcss(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                 Image& out)
 {
     PcssOptions options{s.light_size, s.blocker_samples, s.filter_samples};
-    options.bias.constant = s.depth_bias.value_or(options.bias.constant);
+    options.bias = family_bias(s, options.bias.constant);
     pcss(context, prepared.map(), receivers, options, out);
 }
 
@@ -74,11 +108,18 @@ void shade_burley(Context& context, const PreparedMap& prepared, const Image& re
                   Image& out)
 {
     BurleyOptions options{s.min_radius, s.max_radius, s.bias_slope, s.falloff, s.blocker_samples, s.filter_samples};
-    options.bias.constant = s.depth_bias.value_or(options.bias.constant);
+    options.bias = family_bias(s, options.bias.constant);
     burley(context, prepared.map(), receivers, options, out);
 }
 
 }  // namespace
+
+std::vector<std::string> receiver_channels(const MethodSettings& s)
+{
+    if (s.bias_mode != BiasMode::Constant && s.derivatives == DerivativeSource::Channels)
+        return {"u", "v", "z", "dzdu", "dzdv"};
+    return {"u", "v", "z"};
+}
 
 PreparedMap prepare_map(Context&, const Image& map, const MethodSettings&) { return PreparedMap(map); }
 
@@ -103,10 +144,23 @@ const std::vector<Method>& methods()
          {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, prepare_evsm_table<2>, shade_evsm},
         {"evsm4", "exponential variance shadow maps, both warps (Lauritzen & McCool 2008)",
          {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, prepare_evsm_table<4>, shade_evsm},
+        {"pcf", "percentage-closer filtering over a box window (Reeves et al. 1987)",
+         {"radius", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale", "bias-derivatives"},
+         prepare_map, shade_pcf},
+        {"pcf-gauss", "PCF on an NxN grid of Gaussian-weighted bilinear taps (Toy Story 3, 2010)",
+         {"grid", "sigma", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale", "bias-derivatives"},
+         prepare_map, shade_pcf_gauss},
+        {"pcf-disc", "PCF over a Vogel-spiral disc rotated per receiver from a 4x4 tile (Toy Story 3)",
+         {"taps", "disc-radius", "rotation", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale",
+          "bias-derivatives"},
+         prepare_map, shade_pcf_disc},
         {"pcss", "percentage-closer soft shadows: blocker search, width, PCF on a disc (Fernando 2005)",
-         {"light-size", "depth-bias", "blocker-samples", "filter-samples", "preset"}, prepare_map, shade_pcss},
+         {"light-size", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale", "bias-derivatives",
+          "blocker-samples", "filter-samples", "preset"},
+         prepare_map, shade_pcss},
         {"burley", "soft shadows on the bias cone, weighted blocker depth (Burley, Disney)",
-         {"min-radius", "max-radius", "depth-bias", "bias-slope", "falloff", "blocker-samples", "filter-samples"},
+         {"min-radius", "max-radius", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale",
+          "bias-derivatives", "bias-slope", "falloff", "blocker-samples", "filter-samples"},
          prepare_map, shade_burley},
     };
     return table;

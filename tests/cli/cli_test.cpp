@@ -132,7 +132,7 @@ TEST_F(CliTest, ShadeRejectsBadOptions)
     expect_bad_input(shade("--method vsm --bleed 1"), "--bleed");
     expect_bad_input(shade("--method vsm --bleed -0.1"), "--bleed");
     expect_bad_input(shade("--method vssm --light-size 0"), "--light-size");
-    expect_bad_input(shade("--method pcf"), "--method");
+    expect_bad_input(shade("--method pcf-box"), "--method");
     expect_bad_input(shade("--method vsm --radius three"), "--radius");
     expect_bad_input(shade("--method vsm --precision float"), "--precision");
     expect_bad_input(shade("--method vsm --backend cuda"), "backend");

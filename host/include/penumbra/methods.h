@@ -26,6 +26,7 @@
 #include "penumbra/moments.h"
 #include "penumbra/parameter_range.h"
 #include "penumbra/soft_pcf.h"
+#include "penumbra/pcf.h"
 
 namespace penumbra {
 
@@ -47,6 +48,15 @@ struct MethodSettings {
     int blocker_samples = PcssOptions{}.blocker_samples, filter_samples = PcssOptions{}.filter_samples;
     float min_radius = BurleyOptions{}.min_radius, max_radius = BurleyOptions{}.max_radius;
     float bias_slope = BurleyOptions{}.bias_slope, falloff = BurleyOptions{}.falloff;
+    // The percentage-closer family (penumbra/pcf.h); depth_bias unset: kPcfDefaultDepthBias.
+    BiasMode bias_mode = DepthBias{}.mode;
+    float bias_min = DepthBias{}.min, bias_max = DepthBias{}.max, slope_scale = DepthBias{}.slope_scale;
+    DerivativeSource derivatives = DepthBias{}.derivatives;
+    int grid = PcfGaussOptions{}.grid;
+    float sigma = PcfGaussOptions{}.sigma;
+    int taps = PcfDiscOptions{}.taps;
+    float disc_radius = PcfDiscOptions{}.radius;
+    bool rotate = PcfDiscOptions{}.rotate;
 };
 
 struct Method;
@@ -109,6 +119,10 @@ struct Method {
     // run a method; a benchmark times each step alone.
     Image run(Context& context, const Image& map, const Image& receivers, const MethodSettings& settings) const;
 };
+
+// The receivers' channels a method run with `settings` reads from a file:
+// u, v, z, and dzdu, dzdv when a bias takes its derivatives from channels.
+std::vector<std::string> receiver_channels(const MethodSettings& settings);
 
 // The build step of a method that reads the shadow map itself: keeps no table.
 PreparedMap prepare_map(Context& context, const Image& map, const MethodSettings& settings);
