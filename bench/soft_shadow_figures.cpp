@@ -21,7 +21,6 @@
 #include <vector>
 
 #include "penumbra/methods.h"
-#include "penumbra/pcf.h"
 #include "penumbra/reference.h"
 
 namespace ref = penumbra::reference;
@@ -97,14 +96,11 @@ int count(const Image& mask)
     return n;
 }
 
-// Until pcf joins the method table (s5pcf), its operation is called directly
-// at the same setting (radius 2, the family's default bias).
-bool available(const Entry& e) { return method_or_null(e.name) || std::string(e.name) == "pcf"; }
+bool available(const Entry& e) { return method_or_null(e.name) != nullptr; }
 
 Image shade(penumbra::Context& context, const Entry& e, const Image& map, const ref::Receivers& rx)
 {
     const penumbra::Method* m = method_or_null(e.name);
-    if (!m) return penumbra::pcf(context, map, rx.light_uvz, penumbra::PcfOptions{2});
     return m->run(context, map, rx.light_uvz, penumbra::parse_method_settings(*m, e.options));
 }
 
