@@ -56,6 +56,8 @@
     X(pcf, pcf, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))                   \
     X(pcf, pcf_gather, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))            \
     X(pcf, pcf_gauss, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
-    X(pcf, pcf_disc, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
+    X(pcf, pcf_disc, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
+    X(pcf, pcss, pixel, SoftPcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))              \
+    X(pcf, burley, pixel, SoftPcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
 
 #endif

@@ -184,6 +184,23 @@ typedef struct {
     float disc_radius; /* pcf_disc: the disc's radius in texels (> 0) */
 } PcfParams;
 
+/* The soft members of the family (kernels/pcss.h, kernels/burley.h), on the
+ * Hammersley disc (kernels/hammersley.h). Radii and light_size in texture units. */
+#define PN_SOFT_MAX_SAMPLES 1024 /* taps per pass (penumbra/soft_pcf.h, kMaxSoftSamples) */
+typedef struct {
+    pn_dims depth;       /* the shadow map: one plane */
+    pn_dims receivers;   /* as PcfParams */
+    pn_dims out;         /* one plane: visibility */
+    PcfBias bias;        /* the family's bias; burley: bias.depth_bias is the cone's base bias */
+    int blocker_samples; /* taps of the blocker search (1 .. PN_SOFT_MAX_SAMPLES) */
+    int filter_samples;  /* taps of the filter */
+    float light_size;    /* pcss: search diameter, and L in w = L (z - z_b) / z_b */
+    float min_radius;    /* burley: filter radius at contact */
+    float max_radius;    /* burley: depth-pass radius R and the widest filter */
+    float bias_slope;    /* burley: the cone's slope, depth per texture unit */
+    float falloff;       /* burley: opacity falloff distance in depth units; 0 = off */
+} SoftPcfParams;
+
 #ifdef __cplusplus
 }  /* namespace penumbra */
 #endif

@@ -86,6 +86,23 @@ std::vector<SweepPoint> light_sweep(const reference::Scene& scene, int map_size,
     return sweep;
 }
 
+// Burley sweeps its widest radius with the scene's light: R = light_size x
+// {0.5, 1, 2}; at scale 1 that is the filter radius PCSS gives a blocker at
+// a third of the receiver's depth (w / 2 = L (z - z/3) / (z/3) / 2 = L);
+// the contact radius is half a texel.
+std::vector<SweepPoint> burley_sweep(const reference::Scene& scene, int map_size)
+{
+    const double physical = reference::light_size(scene);
+    std::vector<SweepPoint> sweep;
+    for (double scale : {0.5, 1.0, 2.0}) {
+        MethodSettings s;
+        s.max_radius = float(std::min(physical * scale, 0.5));
+        s.min_radius = std::min(0.5f / float(map_size), s.max_radius);
+        sweep.push_back({format("R=%.3g", s.max_radius), s});
+    }
+    return sweep;
+}
+
 // The percentage-closer family on the receiver-plane bias (the mode that
 // needs no per-scene tuning, Toy Story 3), each sweeping its footprint: the
 // box radius, the Gaussian grid's sigma, the disc's tap count at 3 texels.
@@ -225,6 +242,8 @@ std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size
             table_method("msm-soft", light_sweep(scene, map_size, kDemoMsmDepthBias)),
             table_method("evsm2", radius_sweep()),
             table_method("evsm4", radius_sweep()),
+            table_method("pcss", light_sweep(scene, map_size)),
+            table_method("burley", burley_sweep(scene, map_size)),
             sdf_grid,
             blurred_method(sdf_grid, "sdf+blur", sdf_classic),
             sdf_method(scene, map_size, SdfSource::Analytic),

@@ -1,7 +1,8 @@
 // penumbra render-scene: a reference scene in the `penumbra shade` file
 // contract, so that anyone can check a method (this library's or their own)
 // against the ray-traced ground truth.
-//   SM.exr  channel Z: the shadow map (light depth in [0, 1])
+//   SM.exr  channel Z: the shadow map (light depth in [0, 1]; --depth picks the
+//           first surface, the midpoint of the first two or the second, Woo 1992)
 //   RX.exr  channels u, v, z (light space), P.x P.y P.z (world position),
 //           N.x N.y N.z (normal), mask (1 where the receiver is valid)
 //   GT.exr  channel Y: the fraction of the area light visible, in [0, 1]
@@ -12,6 +13,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "penumbra/error.h"
 #include "penumbra/exr_io.h"
 #include "penumbra/output_files.h"
 #include "penumbra/reference/ground_truth.h"
@@ -51,21 +53,38 @@ int strata_for_samples(int samples)
     return std::max(1, int(std::lround(std::sqrt(double(samples)))));
 }
 
+namespace {
+
+reference::ShadowDepth parse_shadow_depth(const std::string& text)
+{
+    try {
+        return reference::shadow_depth_from_name(text, "--depth");
+    } catch (const Error& e) {
+        throw UsageError{"option --depth: " + e.message()};
+    }
+}
+
+}  // namespace
+
 int render_scene_command(const std::vector<std::string>& argv)
 {
     if (!argv.empty() && argv[0] == "--help") {
         std::cout << "usage: penumbra render-scene NAME|SCENE.json --shadow-map SM.exr --receivers RX.exr --truth GT.exr\n"
                      "                             [--map-size N] [--view-size WxH] [--samples S]\n"
+                     "                             [--depth first|midpoint|second]\n"
                      "  scenes: contact, overlap, fence, grazing, large (or a JSON scene file)\n"
                      "  --map-size N     shadow map N x N (default: the scene's own, e.g. 1024)\n"
                      "  --view-size WxH  receivers seen from the view camera (default 320x240)\n"
-                     "  --samples S      ground-truth rays per receiver, stratified (default 1024)\n";
+                     "  --samples S      ground-truth rays per receiver, stratified (default 1024)\n"
+                     "  --depth D        what the shadow map stores along each light ray (Woo 1992):\n"
+                     "                   first (default), midpoint of the first two surfaces, or the\n"
+                     "                   second; the far plane (1) stands in for a missing second\n";
         return 0;
     }
     if (argv.empty() || argv[0].rfind("--", 0) == 0) throw UsageError{"the scene name comes first (see --help)"};
     const reference::Scene scene = resolve_scene(argv[0]);
     const Args args({argv.begin() + 1, argv.end()},
-                    {"--shadow-map", "--receivers", "--truth", "--map-size", "--view-size", "--samples"}, {});
+                    {"--shadow-map", "--receivers", "--truth", "--map-size", "--view-size", "--samples", "--depth"}, {});
     const std::string sm_path = args.required("--shadow-map");
     const std::string rx_path = args.required("--receivers");
     const std::string gt_path = args.required("--truth");
@@ -75,8 +94,9 @@ int render_scene_command(const std::vector<std::string>& argv)
     if (map_size < 1 || map_size > 16384) throw UsageError{"option --map-size: must be in [1, 16384]"};
     const ViewSize view = parse_view_size(args.text("--view-size", "320x240"));
     const int strata = strata_for_samples(args.integer("--samples", 1024));
+    const reference::ShadowDepth depth = parse_shadow_depth(args.text("--depth", "first"));
 
-    const Image map = reference::render_shadow_map(scene, map_size, map_size);
+    const Image map = reference::render_shadow_map(scene, map_size, map_size, depth);
     const reference::Receivers rx = reference::render_receivers(scene, view.width, view.height);
     const Image truth = reference::ground_truth(scene, rx, {strata});
     // All three or none: each is written in full before any replaces its target.
@@ -86,7 +106,7 @@ int render_scene_command(const std::vector<std::string>& argv)
     stage_exr(outputs, gt_path, truth, {"Y"});
     outputs.publish();
     std::cout << "wrote " << sm_path << ", " << rx_path << ", " << gt_path << " (" << scene.name << ", map "
-              << map_size << "^2, " << view.width << "x" << view.height << " receivers, " << strata * strata
+              << map_size << "^2 " << reference::shadow_depth_name(depth) << " depth, " << view.width << "x" << view.height << " receivers, " << strata * strata
               << " rays each)\n";
     return 0;
 }

@@ -79,6 +79,21 @@ void set_exponents(const Method& m, const std::string& text, MethodSettings& s)
     if (two) s.negative_exponent = exponent(text.substr(comma + 1), kNegativeExponentRange);
 }
 
+// A named pair of PCSS sample counts (penumbra/soft_pcf.h, kPcssPresets).
+void set_preset(const Method& m, const std::string& text, MethodSettings& s)
+{
+    std::string names;
+    for (const PcssPreset& preset : kPcssPresets) {
+        if (text == preset.name) {
+            s.blocker_samples = preset.blocker_samples;
+            s.filter_samples = preset.filter_samples;
+            return;
+        }
+        names += (names.empty() ? "" : ", ") + std::string(preset.name);
+    }
+    throw bad_value(m, "preset", "'" + text + "' is not a preset (" + names + ")");
+}
+
 // One of a list of words: its index in `words`.
 template <std::size_t N>
 int parse_word(const Method& m, std::string_view parameter, const std::string& text, const char* const (&words)[N])
@@ -153,13 +168,28 @@ const std::vector<MethodOption>& method_options()
          set_float<&S::moment_bias, kMomentBiasRange>},
         {"depth-bias", "D",
          "subtracted from receiver depth (sloped ones need about half a texel's depth change more)",
-         "3.05e-5 = two 16-bit steps (msm*), 0 (evsm*), 1e-3 (pcf*)", &kDepthBiasRange, false,
+         "3.05e-5 = two 16-bit steps (msm*), 0 (evsm*), 1e-3 (pcf*), 5e-4 (pcss), 0 = the cone's tip (burley)",
+         &kDepthBiasRange, false,
          set_float<&S::depth_bias, kDepthBiasRange>},
         {"quantize", "16",
          "MSM's optimized 16-bit storage (I3D 2015; 16 B/texel, not 48): moves visibility by up to 0.56",
          "none (exact 48-bit tables)", nullptr, false, set_quantization},
         {"exponents", "P,N", "warp exponents c+,c- (evsm2: P only); above 10 exact storage could not keep 2e-4",
          "10,5", &kPositiveExponentRange, false, set_exponents, {"positive-exponent", "negative-exponent"}},
+        {"blocker-samples", "N", "taps of the blocker search (Hammersley disc)", "16", &kBlockerSamplesRange, false,
+         set_int<&S::blocker_samples, kBlockerSamplesRange>},
+        {"filter-samples", "N", "taps of the percentage-closer filter (Hammersley disc)", "24",
+         &kFilterSamplesRange, false, set_int<&S::filter_samples, kFilterSamplesRange>},
+        {"preset", "NAME", "blocker/filter taps: hdrp = 16/24, godot-ultra = 32/32", "none", nullptr, false,
+         set_preset, {"blocker-samples", "filter-samples"}},
+        {"min-radius", "R", "filter radius at contact, texture units", "0.0005", &kMinRadiusRange, false,
+         set_float<&S::min_radius, kMinRadiusRange>},
+        {"max-radius", "R", "blocker-search radius and widest filter, texture units", "0.01", &kMaxRadiusRange,
+         false, set_float<&S::max_radius, kMaxRadiusRange>},
+        {"bias-slope", "S", "the bias cone's slope: depth per texture unit of tap radius", "2 (Burley's)",
+         &kBiasSlopeRange, false, set_float<&S::bias_slope, kBiasSlopeRange>},
+        {"falloff", "D", "shadow opacity 1 - (z - z_blocker) / D, clamped (0 = off)", "0", &kFalloffRange, false,
+         set_float<&S::falloff, kFalloffRange>},
         {"bias-mode", "M",
          "constant (depth >= z - depth-bias), slope (+ slope-scale x the depth step per texel) or receiver-plane "
          "(each tap on the receiver's plane, Isidoro 2006); slope and receiver-plane clamp to [bias-min, bias-max]",

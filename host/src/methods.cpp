@@ -87,6 +87,31 @@ void shade_pcf_disc(Context& context, const PreparedMap& prepared, const Image& 
                    PcfDiscOptions{s.taps, s.disc_radius, s.rotate, depth_bias_of(s)});
 }
 
+// The soft members of the percentage-closer family read the map itself,
+// under the family's bias options with their own default constant.
+DepthBias family_bias(const MethodSettings& s, float default_constant)
+{
+    DepthBias b = depth_bias_of(s);
+    b.constant = s.depth_bias.value_or(default_constant);
+    return b;
+}
+
+void shade_pcss(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+                Image& out)
+{
+    PcssOptions options{s.light_size, s.blocker_samples, s.filter_samples};
+    options.bias = family_bias(s, options.bias.constant);
+    pcss(context, prepared.map(), receivers, options, out);
+}
+
+void shade_burley(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+                  Image& out)
+{
+    BurleyOptions options{s.min_radius, s.max_radius, s.bias_slope, s.falloff, s.blocker_samples, s.filter_samples};
+    options.bias = family_bias(s, options.bias.constant);
+    burley(context, prepared.map(), receivers, options, out);
+}
+
 }  // namespace
 
 std::vector<std::string> receiver_channels(const MethodSettings& s)
@@ -129,6 +154,14 @@ const std::vector<Method>& methods()
          {"taps", "disc-radius", "rotation", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale",
           "bias-derivatives"},
          prepare_map, shade_pcf_disc},
+        {"pcss", "percentage-closer soft shadows: blocker search, width, PCF on a disc (Fernando 2005)",
+         {"light-size", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale", "bias-derivatives",
+          "blocker-samples", "filter-samples", "preset"},
+         prepare_map, shade_pcss},
+        {"burley", "soft shadows on the bias cone, weighted blocker depth (Burley, Disney)",
+         {"min-radius", "max-radius", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale",
+          "bias-derivatives", "bias-slope", "falloff", "blocker-samples", "filter-samples"},
+         prepare_map, shade_burley},
     };
     return table;
 }

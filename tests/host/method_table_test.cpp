@@ -31,7 +31,8 @@ TEST(MethodTable, ListsEachMethodOnceWithKnownOptions)
             EXPECT_TRUE(known) << m.name << " reads " << option;
         }
     }
-    EXPECT_EQ(names, (std::set<std::string>{"vsm", "vssm", "msm", "msm-soft", "evsm2", "evsm4", "pcf", "pcf-gauss", "pcf-disc"}));
+    EXPECT_EQ(names, (std::set<std::string>{"vsm", "vssm", "msm", "msm-soft", "evsm2", "evsm4", "pcf", "pcf-gauss",
+                                            "pcf-disc", "pcss", "burley"}));
 }
 
 // A value just outside the range: below an open or closed lower bound, above an upper one.

@@ -148,6 +148,16 @@ LookupRun lookup_case(const Sources& s)
         p.disc_radius = 2.0f;
         p.rotate = 1;
         if (name.starts_with("pcf")) return map_run_of<K>(depth_map(), p);
+    } else if constexpr (std::is_same_v<Params, SoftPcfParams>) {
+        SoftPcfParams p{};  // host/src/soft_pcf.cpp; discs a few texels wide on the 9x5 map
+        p.bias = PcfBias{PN_BIAS_CONSTANT, 1e-3f, 1.0f, 0.0f, 0.02f};
+        p.blocker_samples = 16;
+        p.filter_samples = 24;
+        p.light_size = 0.3f;
+        p.min_radius = 0.02f;
+        p.max_radius = 0.3f;
+        p.bias_slope = 2.0f;
+        if (name == "pcss" || name == "burley") return map_run_of<K>(depth_map(), p);
     }
     return {};
 }

@@ -5,9 +5,7 @@
 #include <numbers>
 
 namespace penumbra::testing {
-namespace {
 
-// The comparison depth z - beta for the tap at texel (tx, ty) (kernels/depth_bias.h).
 double tap_reference(const Image& map, const RefReceiver& r, const RefBias& b, int tx, int ty)
 {
     const double u = std::clamp(r.u, 0.0, 1.0), v = std::clamp(r.v, 0.0, 1.0);
@@ -27,6 +25,8 @@ double tap_reference(const Image& map, const RefReceiver& r, const RefBias& b, i
     }
     return r.z;
 }
+
+namespace {
 
 // 1 when the texel (tx, ty) (inside the map) is lit; records the margin.
 double lit(const Image& map, const RefReceiver& r, const RefBias& b, int tx, int ty, RefResult& result)

@@ -34,6 +34,10 @@ struct RefResult {
     double margin = 1e30;  // smallest |depth - (z - beta)| of any tap, or disc tap to texel edge
 };
 
+// The comparison depth z - beta for the tap at texel (tx, ty), inside the map
+// (kernels/depth_bias.h); also the soft members' (support/soft_pcf_reference.h).
+double tap_reference(const Image& map, const RefReceiver& r, const RefBias& b, int tx, int ty);
+
 // The receiver of pixel (x, y) of a 3- or 6-plane receivers image.
 RefReceiver ref_receiver(const Image& receivers, int x, int y);
 

@@ -25,6 +25,7 @@
 #include "penumbra/image.h"
 #include "penumbra/moments.h"
 #include "penumbra/parameter_range.h"
+#include "penumbra/soft_pcf.h"
 #include "penumbra/pcf.h"
 
 namespace penumbra {
@@ -43,6 +44,10 @@ struct MethodSettings {
     std::optional<float> moment_bias{}, depth_bias{};  // unset: the method's default
     Quantization quantization = Quantization::None;
     std::optional<float> positive_exponent{}, negative_exponent{};
+    // pcss and burley (penumbra/soft_pcf.h).
+    int blocker_samples = PcssOptions{}.blocker_samples, filter_samples = PcssOptions{}.filter_samples;
+    float min_radius = BurleyOptions{}.min_radius, max_radius = BurleyOptions{}.max_radius;
+    float bias_slope = BurleyOptions{}.bias_slope, falloff = BurleyOptions{}.falloff;
     // The percentage-closer family (penumbra/pcf.h); depth_bias unset: kPcfDefaultDepthBias.
     BiasMode bias_mode = DepthBias{}.mode;
     float bias_min = DepthBias{}.min, bias_max = DepthBias{}.max, slope_scale = DepthBias{}.slope_scale;

@@ -4,15 +4,40 @@
 // rows in parallel with oneTBB.
 #pragma once
 
+#include <string>
+
 #include "penumbra/image.h"
 #include "penumbra/reference/scene.h"
 
 namespace penumbra::reference {
 
-// The shadow map: one channel, the linear light depth z in [0, 1] of the first
-// surface along the ray through each texel centre ((i + 1/2)/W, (j + 1/2)/H),
-// between the near and far planes; 1 (the far plane) where the ray meets nothing.
-Image render_shadow_map(const Scene& scene, int width, int height);
+// Which depth a shadow-map texel stores (Woo 1992, "The Shadow Depth Map
+// Revisited", Graphics Gems III; named in Burley's bias-cone paper and the
+// real-time shadow notes). Along the ray through the texel centre, with z1 the
+// first surface crossing and z2 the next one strictly beyond it (entering or
+// leaving a solid, the tracer's crossings: for a slab, its top then its bottom):
+//   First     z1, the classic map (Williams 1978).
+//   Midpoint  (z1 + z2) / 2: a receiver (which is a first surface) then lies
+//             half an occluder's thickness in front of the stored depth, so it
+//             needs far less bias; a thin occluder still leaks.
+//   Second    z2: the receiver's own back face decides (Wang and Molnar 1994's
+//             second-depth idea; it needs closed, watertight solids).
+// Where the ray has no second crossing before the far plane (the ground is a
+// half-space: rays enter it and never leave), z2 is the far plane, 1; so
+// Second stores 1 and Midpoint (z1 + 1) / 2 there: lit ground with nothing
+// behind it can shadow nothing. Where the ray meets nothing all three store 1.
+enum class ShadowDepth { First, Midpoint, Second };
+
+// "first", "midpoint", "second"; Error(InvalidArgument) naming `parameter`
+// and the valid names for anything else.
+ShadowDepth shadow_depth_from_name(const std::string& name, const std::string& parameter);
+const char* shadow_depth_name(ShadowDepth depth);
+
+// The shadow map: one channel, the linear light depth z in [0, 1] (`depth`
+// chooses which surface, above) along the ray through each texel centre
+// ((i + 1/2)/W, (j + 1/2)/H), between the near and far planes; 1 (the far
+// plane) where the ray meets nothing.
+Image render_shadow_map(const Scene& scene, int width, int height, ShadowDepth depth = ShadowDepth::First);
 
 // What the view camera sees, per pixel (all images width x height).
 //  light_uvz       3 channels: u, v, z in light space (light_space.h)

@@ -1,0 +1,146 @@
+/* The Hammersley point set in polar form, as a disc of filter taps.
+ *
+ * Point k of n (Weisstein, "Hammersley Point Set", MathWorld):
+ *   x_k = k / n,  y_k = phi_2(k), the base-2 radical inverse (the bits of k
+ *   mirrored about the binary point: phi_2(6 = 110b) = 0.011b = 3/8).
+ * Burley ("Shadow Map Bias Cone and Improved Soft Shadows", section 3.2, notes
+ * 2-4) takes x as the angle, theta = 2 pi x, and y as the radius:
+ *   radius = y        concentrates taps near the centre (the blocker search:
+ *                     close contacts can only be near the centre, note 4);
+ *   radius = sqrt(y)  restores uniform density over the disc (the area within
+ *                     radius rho is rho^2, so sqrt maps uniform y to uniform
+ *                     area: the percentage-closer blur, note 3).
+ * Point 0 is the centre (y_0 = 0), so every pattern tests the receiver's own
+ * texel, which is what makes a zero radius a hard shadow equal to pcf r=0.
+ *
+ * The disc helpers at the end read the map under the family's depth bias
+ * (kernels/depth_bias.h), so this file follows it in the kernel list.
+ *
+ * The pattern is uniform (the same for every pixel): the tap offsets are
+ * computed once per tap, in double, by the series below, so that every
+ * backend places the taps on exactly the same float values (a library cos or
+ * sin may differ between OpenCL and C++ by an ulp).
+ */
+#ifndef PENUMBRA_HAMMERSLEY_H
+#define PENUMBRA_HAMMERSLEY_H
+
+/* phi_2(k) for k < 2^24 (exact in float: the mirrored bits fit a mantissa). */
+PN_FN float hammersley_radical_inverse(uint k)
+{
+    uint b = k;
+    b = (b << 16) | (b >> 16);
+    b = ((b & 0x00ff00ffu) << 8) | ((b & 0xff00ff00u) >> 8);
+    b = ((b & 0x0f0f0f0fu) << 4) | ((b & 0xf0f0f0f0u) >> 4);
+    b = ((b & 0x33333333u) << 2) | ((b & 0xccccccccu) >> 2);
+    b = ((b & 0x55555555u) << 1) | ((b & 0xaaaaaaaau) >> 1);
+    return (float)(b >> 8) * (1.0f / 16777216.0f);
+}
+
+/* sin a for |a| <= pi/4 by its Taylor series to a^17 (the next term is below
+ * 1e-19), in Horner form. */
+PN_FN double hammersley_sin_series(double a)
+{
+    const double a2 = a * a;
+    double s = 1.0 / 355687428096000.0;          /* 1/17! */
+    s = 1.0 / 1307674368000.0 - a2 * s;          /* 1/15! */
+    s = 1.0 / 6227020800.0 - a2 * s;             /* 1/13! */
+    s = 1.0 / 39916800.0 - a2 * s;               /* 1/11! */
+    s = 1.0 / 362880.0 - a2 * s;                 /* 1/9! */
+    s = 1.0 / 5040.0 - a2 * s;                   /* 1/7! */
+    s = 1.0 / 120.0 - a2 * s;                    /* 1/5! */
+    s = 1.0 / 6.0 - a2 * s;                      /* 1/3! */
+    return a * (1.0 - a2 * s);
+}
+
+/* cos a for |a| <= pi/4, to a^18. */
+PN_FN double hammersley_cos_series(double a)
+{
+    const double a2 = a * a;
+    double c = 1.0 / 6402373705728000.0;         /* 1/18! */
+    c = 1.0 / 20922789888000.0 - a2 * c;         /* 1/16! */
+    c = 1.0 / 87178291200.0 - a2 * c;            /* 1/14! */
+    c = 1.0 / 479001600.0 - a2 * c;              /* 1/12! */
+    c = 1.0 / 3628800.0 - a2 * c;                /* 1/10! */
+    c = 1.0 / 40320.0 - a2 * c;                  /* 1/8! */
+    c = 1.0 / 720.0 - a2 * c;                    /* 1/6! */
+    c = 1.0 / 24.0 - a2 * c;                     /* 1/4! */
+    c = 0.5 - a2 * c;                            /* 1/2! */
+    return 1.0 - a2 * c;
+}
+
+/* One tap of the unit disc: (dx, dy) = radius (cos theta, sin theta). */
+typedef struct {
+    float dx;
+    float dy;
+    float radius;
+} DiscTap;
+
+/* Tap k of an n-point pattern (0 <= k < n); `uniform_density` nonzero takes
+ * radius sqrt(y_k) (the blur pass), zero radius y_k (the depth pass). The
+ * angle 2 pi k / n is reduced to the nearest quarter turn q and a remainder
+ * a in [-pi/4, pi/4]; then (cos, sin) of q quarter turns rotate (cos a, sin a). */
+PN_FN DiscTap hammersley_disc_tap(int k, int n, int uniform_density)
+{
+    const double turns = (double)k / (double)n;
+    const int q = (int)(4.0 * turns + 0.5);
+    const double a = 6.283185307179586 * (turns - 0.25 * (double)q);
+    const double c = hammersley_cos_series(a), s = hammersley_sin_series(a);
+    const int quadrant = q & 3;
+    const double cos_t = quadrant == 0 ? c : quadrant == 1 ? -s : quadrant == 2 ? -c : s;
+    const double sin_t = quadrant == 0 ? s : quadrant == 1 ? c : quadrant == 2 ? -s : -c;
+    const float y = hammersley_radical_inverse((uint)k);
+    DiscTap tap;
+    tap.radius = uniform_density ? (float)sqrt((double)y) : y;
+    tap.dx = (float)((double)tap.radius * cos_t);
+    tap.dy = (float)((double)tap.radius * sin_t);
+    return tap;
+}
+
+/* ---- The disc around a receiver (pcss, burley). Uses kernels/depth_bias.h. ---- */
+
+/* The texel a tap at continuous texel coordinate t reads: floor(t) clamped
+ * into [0, size - 1] (clamp to edge), as a float holding an integer. */
+PN_FN pn_float hammersley_texel(pn_float t, int size)
+{
+    return pn_clamp(pn_floor(t), 0.0f, (float)size - 1.0f);
+}
+
+/* What one tap of a disc reads: the stored depth, and the depth it must
+ * reach to be lit under the family's bias at the texel it reads
+ * (pcf_tap_reference), before any cone. */
+typedef struct {
+    pn_float depth;
+    pn_float reference;
+} DiscSample;
+
+/* Tap t of the disc of `radius` (texture units) around receiver r: the tap
+ * sits at (u W + dx radius W, v H + dy radius H) texels. */
+PN_FN DiscSample hammersley_sample(PN_GLOBAL const float* depth, pn_dims map, PcfBias b, PcfReceiver r,
+                                   pn_float radius, DiscTap t)
+{
+    const float w = (float)map.width, h = (float)map.height;
+    const pn_float tx = hammersley_texel(r.u * w + t.dx * radius * w, map.width);
+    const pn_float ty = hammersley_texel(r.v * h + t.dy * radius * h, map.height);
+    DiscSample s;
+    s.depth = pn_fetch(depth, map, pn_to_int(tx), pn_to_int(ty));
+    s.reference = pcf_tap_reference(r, b, map, tx, ty);
+    return s;
+}
+
+/* Percentage-closer filtering over the uniform-density disc (radius sqrt(y))
+ * of `radius` (texture units): the fraction of n taps lit, a tap at distance
+ * rho (texture units) from the centre lowered by the cone slope * rho
+ * (slope 0: the family's bias alone; Burley's bias cone otherwise). */
+PN_FN pn_float hammersley_disc_visibility(PN_GLOBAL const float* depth, pn_dims map, PcfBias b, PcfReceiver r,
+                                          pn_float radius, int n, float slope)
+{
+    pn_float lit = 0.0f;
+    for (int k = 0; k < n; ++k) {
+        const DiscTap t = hammersley_disc_tap(k, n, 1);
+        const DiscSample s = hammersley_sample(depth, map, b, r, radius, t);
+        lit = lit + pcf_lit(s.depth, s.reference - slope * t.radius * radius);
+    }
+    return lit / (float)n;
+}
+
+#endif

@@ -1,0 +1,67 @@
+/* Percentage-closer soft shadows (Fernando 2005, "Percentage-Closer Soft
+ * Shadows", SIGGRAPH sketch; the real-time shadow notes' three steps).
+ *
+ * Per receiver (u, v, z), u and v clamped into [0, 1], at the continuous
+ * texel position (u W, v H), with light_size L in texture units (the scene's
+ * light_size, docs/reference.md):
+ *  1. Blocker search over the disc of diameter L: Fernando's search width
+ *     L (z - near) / z, with the estimate's light and near plane both at
+ *     z = 0 (the model w = L (z - z_b) / z_b measures depths from there), is
+ *     L for every receiver; the same window VSSM searches (kernels/vssm.h).
+ *     A tap blocks when its depth < z - beta (beta: the family's bias,
+ *     kernels/depth_bias.h, at the texel it reads); z_b is the plain mean of
+ *     the blocking taps' depths. No blocking tap: fully lit (1).
+ *  2. Penumbra width w = L (z - z_b) / z_b (texture units), z_b floored at
+ *     1e-4 z (a blocker at the light's plane would give an infinite width).
+ *  3. PCF over the disc of diameter w: the fraction of taps with depth
+ *     >= z - beta. The width is used as computed, not rounded to whole
+ *     texels: the taps sit at fractional offsets and each reads the texel
+ *     that contains it.
+ * Both passes use the Hammersley disc with uniform density
+ * (kernels/hammersley.h), blocker_samples and filter_samples taps; tap 0 is
+ * the receiver's own texel, so L = 0 is a hard shadow equal to pcf r=0.
+ * Taps outside the map read the nearest edge texel (clamp to edge).
+ * Output: visibility in [0, 1]. Cost: blocker_samples + filter_samples
+ * fetches per receiver. Keep in sync with tests/support/soft_pcf_reference.cpp.
+ */
+#ifndef PENUMBRA_PCSS_H
+#define PENUMBRA_PCSS_H
+
+#define PN_PCSS_MIN_OCCLUDER 1e-4f /* z_b floor, as a fraction of z */
+
+/* Step 1: the mean depth of the blocking taps; `found` marks lanes with one. */
+PN_FN pn_float pcss_blocker_depth(PN_GLOBAL const float* depth, const SoftPcfParams p, PcfReceiver r, pn_mask* found)
+{
+    const pn_float radius = 0.5f * p.light_size;
+    pn_float sum = 0.0f, blockers = 0.0f;
+    for (int k = 0; k < p.blocker_samples; ++k) {
+        const DiscSample s =
+            hammersley_sample(depth, p.depth, p.bias, r, radius, hammersley_disc_tap(k, p.blocker_samples, 1));
+        const pn_mask blocks = s.depth < s.reference;
+        sum = sum + pn_select(blocks, s.depth, 0.0f);
+        blockers = blockers + pn_select(blocks, 1.0f, 0.0f);
+    }
+    *found = blockers > 0.0f;
+    return sum / pn_max(blockers, 1.0f);
+}
+
+/* Step 2: the filter disc's radius, w / 2, in texture units. */
+PN_FN pn_float pcss_filter_radius(const SoftPcfParams p, pn_float z, pn_float z_blocker)
+{
+    const pn_float occluder = pn_max(z_blocker, z * PN_PCSS_MIN_OCCLUDER);
+    return 0.5f * p.light_size * (z - occluder) / occluder;
+}
+
+PN_KERNEL void pcss(PN_GLOBAL const float* depth, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
+                    PN_GLOBAL int* bad_rows, const SoftPcfParams p, PN_PIXEL_ARGS)
+{
+    PN_PIXEL_BEGIN(p.out.width, p.out.height);
+    const PcfReceiver r = pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, pn_x, pn_y, bad_rows);
+    pn_mask found;
+    const pn_float z_blocker = pcss_blocker_depth(depth, p, r, &found);
+    const pn_float radius = pcss_filter_radius(p, r.z, z_blocker);
+    const pn_float visibility = hammersley_disc_visibility(depth, p.depth, p.bias, r, radius, p.filter_samples, 0.0f);
+    pn_store(out, p.out, pn_x, pn_y, pn_select(found, visibility, 1.0f));
+}
+
+#endif

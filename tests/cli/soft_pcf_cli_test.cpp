@@ -1,0 +1,73 @@
+// `penumbra shade --method pcss|burley`: the options, the presets and the
+// refusals (exit 2, one line on stderr naming the option).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "penumbra/exr_io.h"
+#include "support/cli.h"
+#include "support/run_cli.h"
+
+namespace penumbra {
+namespace {
+
+using testing::run_cli;
+
+class SoftPcfCli : public testing::CliFixture {
+protected:
+    void SetUp() override
+    {
+        CliFixture::SetUp();
+        ASSERT_EQ(run_cli({"example", "--out", path("ex")}).exit_code, 0);
+    }
+    testing::CliRun shade(const std::string& method, const std::vector<std::string>& options)
+    {
+        std::vector<std::string> args{"shade", "--method", method, "--shadow-map", path("ex/shadow_map.exr"),
+                                      "--receivers", path("ex/receivers.exr"), "--out", path("out.exr")};
+        args.insert(args.end(), options.begin(), options.end());
+        return run_cli(args);
+    }
+};
+
+TEST_F(SoftPcfCli, BothShadeWithTheirOptionsAndPresets)
+{
+    for (const auto& [method, options] :
+         std::vector<std::pair<std::string, std::vector<std::string>>>{
+             {"pcss", {}},
+             {"pcss", {"--preset", "hdrp"}},
+             {"pcss", {"--preset", "godot-ultra", "--light-size", "0.03", "--depth-bias", "0.001"}},
+             {"burley", {}},
+             {"burley", {"--min-radius", "0.001", "--max-radius", "0.02", "--bias-slope", "1", "--falloff", "0.5",
+                         "--blocker-samples", "32", "--filter-samples", "32"}}}) {
+        const testing::CliRun run = shade(method, options);
+        ASSERT_EQ(run.exit_code, 0) << method << ": " << run.err;
+        const Image out = read_exr(path("out.exr"), {"Y"});
+        for (int y = 0; y < out.height(); ++y)
+            for (int x = 0; x < out.width(); ++x) {
+                const float v = out.at(0, x, y);
+                ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << method << " " << v;
+            }
+    }
+}
+
+TEST_F(SoftPcfCli, BadValuesAreOneLineAndExitTwo)
+{
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+        {"pcss", {"--blocker-samples", "-1"}},     {"pcss", {"--filter-samples", "1025"}},
+        {"pcss", {"--blocker-samples", "0"}},      {"pcss", {"--preset", "ultra"}},
+        {"pcss", {"--light-size", "-0.5"}},        {"pcss", {"--max-radius", "0.1"}},
+        {"burley", {"--min-radius", "0.02", "--max-radius", "0.01"}},
+        {"burley", {"--bias-slope", "-2"}},        {"burley", {"--falloff", "nan"}},
+        {"burley", {"--preset", "hdrp"}},          {"burley", {"--filter-samples", "x"}},
+    };
+    for (const auto& [method, options] : cases) {
+        const testing::CliRun run = shade(method, options);
+        EXPECT_TRUE(run.refused_cleanly()) << method << " " << options[0] << ": exit " << run.exit_code << ", "
+                                           << run.err;
+        EXPECT_NE(run.err.find(options[0].substr(2)), std::string::npos) << run.err;
+    }
+}
+
+}  // namespace
+}  // namespace penumbra
