@@ -152,6 +152,10 @@ std::string readers(std::string_view option)
 
 }  // namespace
 
+// The option reads any light size >= 0; each operation checks its own range
+// (vssm and msm-soft need L > 0, pcss takes 0: a hard shadow equal to pcf r=0).
+constexpr ParameterRange kLightSizeOptionRange{"light-size", "light-size", 0, kNoUpperBound, false, true};
+
 const std::vector<MethodOption>& method_options()
 {
     using S = MethodSettings;
@@ -162,8 +166,8 @@ const std::vector<MethodOption>& method_options()
          set_float<&S::min_variance, kMinVarianceRange>},
         {"bleed", "B", "light-bleeding reduction (0 = off)", "0", &kBleedRange, true,
          set_float<&S::bleed, kBleedRange>},
-        {"light-size", "L", "light width in texture units at the near plane", "0.02", &kLightSizeRange, true,
-         set_float<&S::light_size, kLightSizeRange>},
+        {"light-size", "L", "light width in texture units at the near plane (vssm, msm-soft: > 0; pcss: 0 = hard)",
+         "0.02", &kLightSizeOptionRange, true, set_float<&S::light_size, kLightSizeOptionRange>},
         {"moment-bias", "A", "share of each window moved to depths 0 and 1", "6e-5", &kMomentBiasRange, false,
          set_float<&S::moment_bias, kMomentBiasRange>},
         {"depth-bias", "D",

@@ -51,6 +51,19 @@ TEST_F(SoftPcfCli, BothShadeWithTheirOptionsAndPresets)
     }
 }
 
+// Light size 0 is a point light: PCSS's filter shrinks to the receiver's
+// texel, the hard shadow of pcf r=0 (the library's rule, reached from the tool).
+TEST_F(SoftPcfCli, PcssWithLightSizeZeroIsPcfRadiusZero)
+{
+    ASSERT_EQ(shade("pcss", {"--light-size", "0", "--depth-bias", "0.001"}).exit_code, 0);
+    const Image soft = read_exr(path("out.exr"), {"Y"});
+    const testing::CliRun hard = shade("pcf", {"--radius", "0", "--depth-bias", "0.001"});
+    ASSERT_EQ(hard.exit_code, 0) << hard.err;
+    const Image pcf = read_exr(path("out.exr"), {"Y"});
+    for (int y = 0; y < pcf.height(); ++y)
+        for (int x = 0; x < pcf.width(); ++x) ASSERT_EQ(soft.at(0, x, y), pcf.at(0, x, y)) << x << "," << y;
+}
+
 TEST_F(SoftPcfCli, BadValuesAreOneLineAndExitTwo)
 {
     const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
