@@ -6,6 +6,7 @@
 #include <string>
 
 #include "checked_lookup.h"
+#include "pcf_bias.h"
 #include "host/backend/backend.h"
 #include "receiver_plane.h"
 #include "penumbra/error.h"
@@ -43,14 +44,6 @@ void check_receivers(const Image& receivers, const DepthBias& b, const std::stri
             "receivers must have channels u, v, z, got " + std::to_string(receivers.channels()));
 }
 
-PcfBias kernel_bias(const DepthBias& b)
-{
-    const int mode = b.mode == BiasMode::Constant ? PN_BIAS_CONSTANT
-                     : b.mode == BiasMode::Slope  ? PN_BIAS_SLOPE
-                                                  : PN_BIAS_RECEIVER_PLANE;
-    return PcfBias{mode, b.constant, b.slope_scale, b.min, b.max};
-}
-
 // Checks the map, the receivers and the bias; runs K over the prepared receivers.
 template <detail::KernelId K>
 Image run(Context& context, const Image& map, const Image& receivers, const DepthBias& bias, PcfParams p,
@@ -69,7 +62,7 @@ Image run(Context& context, const Image& map, const Image& receivers, const Dept
     p.depth = detail::dims_of(map);
     p.receivers = detail::dims_of(rx);
     p.out = detail::dims_of(out);
-    p.bias = kernel_bias(bias);
+    p.bias = detail::kernel_bias(bias);
     detail::checked_lookup(op, rx, [&](int* bad_rows) {
         detail::receiver_lookup<K>(context.impl(), map, rx, p, out, bad_rows);
     });

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "checked_lookup.h"
+#include "pcf_bias.h"
 #include "visibility_output.h"
 #include "penumbra/error.h"
 
@@ -29,14 +30,6 @@ void check_samples(const std::string& op, int blocker_samples, int filter_sample
     check(kFilterSamplesRange, filter_samples, op);
 }
 
-PcfBias kernel_bias(const DepthBias& b)
-{
-    const int mode = b.mode == BiasMode::Constant ? PN_BIAS_CONSTANT
-                     : b.mode == BiasMode::Slope  ? PN_BIAS_SLOPE
-                                                  : PN_BIAS_RECEIVER_PLANE;
-    return PcfBias{mode, b.constant, b.slope_scale, b.min, b.max};
-}
-
 // Checks the map and the bias, prepares the receivers (derivative planes when
 // the bias mode reads them, pcf_receivers) and runs K.
 template <detail::KernelId K>
@@ -58,7 +51,7 @@ void run(Context& context, const std::string& op, const Image& map, const Image&
     p.depth = detail::dims_of(map);
     p.receivers = detail::dims_of(prepared);
     p.out = detail::dims_of(out);
-    p.bias = kernel_bias(bias);
+    p.bias = detail::kernel_bias(bias);
     detail::checked_lookup(op, prepared, [&](int* bad_rows) {
         detail::receiver_lookup<K>(context.impl(), map, prepared, p, out, bad_rows);
     });
