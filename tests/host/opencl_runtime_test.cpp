@@ -369,7 +369,9 @@ TEST_F(OpenClRuntime, CLErrorsFromLaunchCodeBecomePenumbraErrors)
         << error.what();
 }
 
-TEST_F(OpenClRuntime, SecondBuildComesFromTheCacheAndIsFaster)
+// The speed of the cached build is printed, not asserted: a test that times
+// itself fails on a loaded machine (bench/opencl_startup.sh measures it).
+TEST_F(OpenClRuntime, SecondBuildComesFromTheCache)
 {
     const std::string source = never_built_source();
     runtime->build(source, "");
@@ -380,7 +382,6 @@ TEST_F(OpenClRuntime, SecondBuildComesFromTheCacheAndIsFaster)
 
     const cl::Program cached = runtime->build(source, "");
     EXPECT_TRUE(runtime->last_build_from_cache()) << runtime->last_cache_note();
-    EXPECT_LT(runtime->last_build_seconds(), cold);
     std::printf("[ timing   ] build of a new program %.4f s, from the binary cache %.4f s\n", cold,
                 runtime->last_build_seconds());
     expect_add1_works(cached);
