@@ -30,21 +30,14 @@
 #ifndef PENUMBRA_BURLEY_H
 #define PENUMBRA_BURLEY_H
 
-/* sampleDepth: the cone-weighted mean depth of the blocking taps. */
+/* sampleDepth: the cone-weighted mean depth of the blocking taps, the taps
+ * concentrated at the centre (radius y), each compared on the cone and
+ * weighted 1 - 0.9 r / R (r / R = y). */
 PN_FN pn_float burley_blocker_depth(PN_GLOBAL const float* depth, const SoftPcfParams p, PcfReceiver r,
                                     pn_mask* found)
 {
-    pn_float weighted = 0.0f, total = 0.0f;
-    for (int k = 0; k < p.blocker_samples; ++k) {
-        const DiscTap t = hammersley_disc_tap(k, p.blocker_samples, 0);
-        const DiscSample s = hammersley_sample(depth, p.depth, p.bias, r, p.max_radius, t);
-        const pn_mask blocks = s.depth < s.reference - p.bias_slope * t.radius * p.max_radius;
-        const float weight = 1.0f - 0.9f * t.radius; /* r / R = y */
-        weighted = weighted + pn_select(blocks, weight * s.depth, 0.0f);
-        total = total + pn_select(blocks, weight, 0.0f);
-    }
-    *found = total > 0.0f;
-    return weighted / pn_select(*found, total, 1.0f);
+    return hammersley_blocker_depth(depth, p.depth, p.bias, r, p.max_radius, p.blocker_samples, 0, p.bias_slope,
+                                    0.9f, found);
 }
 
 /* Section 3.3: the shadow fades as its occluder gets farther. */

@@ -16,10 +16,11 @@
  * The disc helpers at the end read the map under the family's depth bias
  * (kernels/depth_bias.h), so this file follows it in the kernel list.
  *
- * The pattern is uniform (the same for every pixel): the tap offsets are
- * computed once per tap, in double, by the series below, so that every
- * backend places the taps on exactly the same float values (a library cos or
- * sin may differ between OpenCL and C++ by an ulp).
+ * The pattern is uniform (the same for every pixel). Its rotation step is
+ * computed in double by the series below, not by a library cos or sin (which
+ * may differ between OpenCL and C++ by an ulp), and the taps are walked by
+ * that rotation in double, so every backend places the taps on the same
+ * float values.
  */
 #ifndef PENUMBRA_HAMMERSLEY_H
 #define PENUMBRA_HAMMERSLEY_H
@@ -75,24 +76,56 @@ typedef struct {
     float radius;
 } DiscTap;
 
-/* Tap k of an n-point pattern (0 <= k < n); `uniform_density` nonzero takes
- * radius sqrt(y_k) (the blur pass), zero radius y_k (the depth pass). The
- * angle 2 pi k / n is reduced to the nearest quarter turn q and a remainder
- * a in [-pi/4, pi/4]; then (cos, sin) of q quarter turns rotate (cos a, sin a). */
-PN_FN DiscTap hammersley_disc_tap(int k, int n, int uniform_density)
+/* (cos, sin) of the angle 2 pi k / n of tap k: the angle is reduced to the
+ * nearest quarter turn q and a remainder a in [-pi/4, pi/4]; then (cos, sin)
+ * of q quarter turns rotate (cos a, sin a). */
+PN_FN void hammersley_angle(int k, int n, double* cos_t, double* sin_t)
 {
     const double turns = (double)k / (double)n;
     const int q = (int)(4.0 * turns + 0.5);
     const double a = 6.283185307179586 * (turns - 0.25 * (double)q);
     const double c = hammersley_cos_series(a), s = hammersley_sin_series(a);
     const int quadrant = q & 3;
-    const double cos_t = quadrant == 0 ? c : quadrant == 1 ? -s : quadrant == 2 ? -c : s;
-    const double sin_t = quadrant == 0 ? s : quadrant == 1 ? c : quadrant == 2 ? -s : -c;
-    const float y = hammersley_radical_inverse((uint)k);
+    *cos_t = quadrant == 0 ? c : quadrant == 1 ? -s : quadrant == 2 ? -c : s;
+    *sin_t = quadrant == 0 ? s : quadrant == 1 ? c : quadrant == 2 ? -s : -c;
+}
+
+/* The taps of an n-point pattern in order, k = 0 .. n - 1. Tap k's angle is
+ * k times 2 pi / n, so each step rotates the last (cos, sin) by the step's
+ * (cos, sin), taken once from the series: four multiplies a tap instead of a
+ * series, which a work-item per receiver (OpenCL) would pay per receiver.
+ * The rotation runs in double: after PN_SOFT_MAX_SAMPLES steps its error is
+ * below 1e-12, far under a float offset's ulp. */
+typedef struct {
+    double cos_t, sin_t;   /* tap k's direction */
+    double step_c, step_s; /* the rotation by 2 pi / n */
+    int k;
+    int uniform_density;   /* nonzero: radius sqrt(y) (the blur pass); zero: y (the depth pass) */
+} DiscWalk;
+
+PN_FN DiscWalk hammersley_walk(int n, int uniform_density)
+{
+    DiscWalk w;
+    w.cos_t = 1.0;
+    w.sin_t = 0.0;
+    hammersley_angle(1, n, &w.step_c, &w.step_s);
+    w.k = 0;
+    w.uniform_density = uniform_density;
+    return w;
+}
+
+/* The current tap, then a step to the next one. */
+PN_FN DiscTap hammersley_walk_next(DiscWalk* w)
+{
+    const float y = hammersley_radical_inverse((uint)w->k);
     DiscTap tap;
-    tap.radius = uniform_density ? (float)sqrt((double)y) : y;
-    tap.dx = (float)((double)tap.radius * cos_t);
-    tap.dy = (float)((double)tap.radius * sin_t);
+    tap.radius = w->uniform_density ? (float)sqrt((double)y) : y;
+    tap.dx = (float)((double)tap.radius * w->cos_t);
+    tap.dy = (float)((double)tap.radius * w->sin_t);
+    const double next_c = w->cos_t * w->step_c - w->sin_t * w->step_s;
+    w->sin_t = w->sin_t * w->step_c + w->cos_t * w->step_s;
+    w->cos_t = next_c;
+    w->k = w->k + 1;
     return tap;
 }
 
@@ -135,12 +168,37 @@ PN_FN pn_float hammersley_disc_visibility(PN_GLOBAL const float* depth, pn_dims 
                                           pn_float radius, int n, float slope)
 {
     pn_float lit = 0.0f;
+    DiscWalk walk = hammersley_walk(n, 1);
     for (int k = 0; k < n; ++k) {
-        const DiscTap t = hammersley_disc_tap(k, n, 1);
+        const DiscTap t = hammersley_walk_next(&walk);
         const DiscSample s = hammersley_sample(depth, map, b, r, radius, t);
         lit = lit + pcf_lit(s.depth, s.reference - slope * t.radius * radius);
     }
     return lit / (float)n;
+}
+
+/* The blocker search of both soft members: n taps of the disc of `radius`
+ * (texture units); a tap at distance rho = t.radius * radius blocks when its
+ * depth is below its reference minus cone_slope * rho (pcss: slope 0), and
+ * weighs 1 - weight_falloff * t.radius (pcss: 0, every tap 1; burley: 0.9,
+ * Burley's 1 - 0.9 r / R). Returns the weighted mean depth of the blocking
+ * taps; `found` marks the lanes with one (weights stay >= 0.1 > 0). */
+PN_FN pn_float hammersley_blocker_depth(PN_GLOBAL const float* depth, pn_dims map, PcfBias b, PcfReceiver r,
+                                        pn_float radius, int n, int uniform_density, float cone_slope,
+                                        float weight_falloff, pn_mask* found)
+{
+    pn_float weighted = 0.0f, total = 0.0f;
+    DiscWalk walk = hammersley_walk(n, uniform_density);
+    for (int k = 0; k < n; ++k) {
+        const DiscTap t = hammersley_walk_next(&walk);
+        const DiscSample s = hammersley_sample(depth, map, b, r, radius, t);
+        const pn_mask blocks = s.depth < s.reference - cone_slope * t.radius * radius;
+        const float weight = 1.0f - weight_falloff * t.radius;
+        weighted = weighted + pn_select(blocks, weight * s.depth, 0.0f);
+        total = total + pn_select(blocks, weight, 0.0f);
+    }
+    *found = total > 0.0f;
+    return weighted / pn_select(*found, total, 1.0f);
 }
 
 #endif

@@ -29,20 +29,11 @@
 
 #define PN_PCSS_MIN_OCCLUDER 1e-4f /* z_b floor, as a fraction of z */
 
-/* Step 1: the mean depth of the blocking taps; `found` marks lanes with one. */
+/* Step 1: the plain mean depth of the blocking taps; `found` marks lanes with one. */
 PN_FN pn_float pcss_blocker_depth(PN_GLOBAL const float* depth, const SoftPcfParams p, PcfReceiver r, pn_mask* found)
 {
-    const pn_float radius = 0.5f * p.light_size;
-    pn_float sum = 0.0f, blockers = 0.0f;
-    for (int k = 0; k < p.blocker_samples; ++k) {
-        const DiscSample s =
-            hammersley_sample(depth, p.depth, p.bias, r, radius, hammersley_disc_tap(k, p.blocker_samples, 1));
-        const pn_mask blocks = s.depth < s.reference;
-        sum = sum + pn_select(blocks, s.depth, 0.0f);
-        blockers = blockers + pn_select(blocks, 1.0f, 0.0f);
-    }
-    *found = blockers > 0.0f;
-    return sum / pn_max(blockers, 1.0f);
+    return hammersley_blocker_depth(depth, p.depth, p.bias, r, 0.5f * p.light_size, p.blocker_samples, 1, 0.0f,
+                                    0.0f, found);
 }
 
 /* Step 2: the filter disc's radius, w / 2, in texture units. */

@@ -8,6 +8,7 @@
 // way, and at most 5% of them are left out.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -142,6 +143,51 @@ PN_BACKEND_TEST(SoftPcf, BurleyOneBlockerByHand)
                 25.0 / 32, 1e-7);
     EXPECT_NEAR(shade<KernelId::burley>(ctx, half_plane_map(), rx, burley_params(s, constant_bias(0))).at(0, 0, 0),
                 25.0f / 32, 1e-6);
+}
+
+// Clamp to edge, by hand: on a 20x20 map whose row 0 and column 0 hold a
+// blocker at 0.4 (the ground at 0.8), a receiver at the centre of texel
+// (0, 0) reads the blocker with every tap left of x = 1 or above y = 1, taps
+// outside the map included (they read the edge texels, as a GPU sampler's
+// clamp-to-edge does; a border of "lit" or a wrap would give other counts).
+// Every blocking tap is at 0.4, so PCSS's z_b = 0.4, w = L and both discs
+// have radius L / 2; Burley's filter radius is (min + max) / 2. The expected
+// visibility is the count of filter taps at x >= 1 and y >= 1, from the
+// pattern in double (std::cos), each tap at least 1e-3 texels from an edge.
+Image corner_blocker_map()
+{
+    Image map(20, 20, 1);
+    for (int y = 0; y < 20; ++y)
+        for (int x = 0; x < 20; ++x) map.at(0, x, y) = x == 0 || y == 0 ? 0.4f : 0.8f;
+    return map;
+}
+
+double lit_share_at_corner(int taps, double radius_texels)
+{
+    int lit = 0;
+    for (const testing::UnitDiscTap& t : testing::hammersley_disc(taps, true)) {
+        const double x = 0.5 + t.dx * radius_texels, y = 0.5 + t.dy * radius_texels;
+        EXPECT_GT(std::min(std::abs(x - 1), std::abs(y - 1)), 1e-3) << "a tap on an edge: pick another radius";
+        lit += x >= 1 && y >= 1;
+    }
+    return double(lit) / taps;
+}
+
+PN_BACKEND_TEST(SoftPcf, TapsOutsideTheMapReadTheEdgeTexels)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    const Image rx = one_receiver(0.5 / 20, 0.5 / 20, 0.8);
+    const PcssSettings pcss{0.23, 32, 48};                  // both radii 0.115 = 2.3 texels
+    const BurleySettings burley{0.05, 0.17, 2.0, 0.0, 32, 48};  // filter radius 0.11 = 2.2 texels
+    const double pcss_lit = lit_share_at_corner(48, 2.3), burley_lit = lit_share_at_corner(48, 2.2);
+    ASSERT_GT(pcss_lit, 0.1);
+    ASSERT_LT(pcss_lit, 0.5);
+    EXPECT_FLOAT_EQ(shade<KernelId::pcss>(ctx, corner_blocker_map(), rx, pcss_params(pcss, constant_bias(1e-3)))
+                        .at(0, 0, 0),
+                    float(pcss_lit));
+    EXPECT_FLOAT_EQ(shade<KernelId::burley>(ctx, corner_blocker_map(), rx, burley_params(burley, constant_bias(1e-3)))
+                        .at(0, 0, 0),
+                    float(burley_lit));
 }
 
 // Random receivers (u, v off the texel grid, z across the map's depths) with
