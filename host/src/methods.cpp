@@ -71,20 +71,20 @@ DepthBias depth_bias_of(const MethodSettings& s)
 void shade_pcf(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                Image& out)
 {
-    out = pcf(context, prepared.map(), receivers, PcfOptions{s.radius, depth_bias_of(s)});
+    pcf(context, prepared.map(), receivers, PcfOptions{s.radius, depth_bias_of(s)}, out);
 }
 
 void shade_pcf_gauss(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                      Image& out)
 {
-    out = pcf_gauss(context, prepared.map(), receivers, PcfGaussOptions{s.grid, s.sigma, depth_bias_of(s)});
+    pcf_gauss(context, prepared.map(), receivers, PcfGaussOptions{s.grid, s.sigma, depth_bias_of(s)}, out);
 }
 
 void shade_pcf_disc(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                     Image& out)
 {
-    out = pcf_disc(context, prepared.map(), receivers,
-                   PcfDiscOptions{s.taps, s.disc_radius, s.rotate, depth_bias_of(s)});
+    pcf_disc(context, prepared.map(), receivers, PcfDiscOptions{s.taps, s.disc_radius, s.rotate, depth_bias_of(s)},
+             out);
 }
 
 // The soft members of the percentage-closer family read the map itself,

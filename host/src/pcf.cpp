@@ -1,24 +1,20 @@
 // Host operations of the percentage-closer family (penumbra/pcf.h): check the
-// options and inputs, prepare the receivers' derivative planes when the bias
-// mode reads them, fill PcfParams, run the entry through the generic lookup.
+// options, fill PcfParams, run the entry through the family's checked lookup
+// (pcf_family.h, whose checks live here).
 #include "penumbra/pcf.h"
 
 #include <string>
 
-#include "checked_lookup.h"
-#include "pcf_bias.h"
-#include "host/backend/backend.h"
+#include "pcf_family.h"
 #include "receiver_plane.h"
+#include "visibility_output.h"
 #include "penumbra/error.h"
 #include "penumbra/parameter_range.h"
 
 namespace penumbra {
-namespace {
+namespace detail {
 
-static_assert(kPcfMaxGrid == PN_PCF_MAX_GRID && kPcfGridRange.high == PN_PCF_MAX_GRID);
-static_assert(kPcfMaxTaps == PN_PCF_MAX_TAPS && kPcfTapsRange.high == PN_PCF_MAX_TAPS);
-
-void check_bias(const DepthBias& b, const std::string& op)
+void check_family_bias(const DepthBias& b, const std::string& op)
 {
     check(kDepthBiasRange, b.constant, op);
     check(kSlopeScaleRange, b.slope_scale, op);
@@ -30,9 +26,7 @@ void check_bias(const DepthBias& b, const std::string& op)
                         "; the bias is clamped to [bias-min, bias-max]");
 }
 
-bool reads_derivatives(const DepthBias& b) { return b.mode != BiasMode::Constant; }
-
-void check_receivers(const Image& receivers, const DepthBias& b, const std::string& op)
+void check_family_receivers(const Image& receivers, const DepthBias& b, const std::string& op)
 {
     require(!receivers.empty(), op, "receivers", "the receivers image is empty (0 pixels)");
     const bool channels = reads_derivatives(b) && b.derivatives == DerivativeSource::Channels;
@@ -42,54 +36,58 @@ void check_receivers(const Image& receivers, const DepthBias& b, const std::stri
                     "the derivatives by finite differences");
     require(receivers.channels() >= 3, op, "receivers",
             "receivers must have channels u, v, z, got " + std::to_string(receivers.channels()));
+    if (channels) require_finite(receivers, op, "the receivers image", "receivers");
 }
 
-// Checks the map, the receivers and the bias; runs K over the prepared receivers.
-template <detail::KernelId K>
-Image run(Context& context, const Image& map, const Image& receivers, const DepthBias& bias, PcfParams p,
-          const std::string& op)
+// The map is scanned for values outside [0, 1] up front: the kernels do not
+// flag them (a NaN depth would silently count as neither blocker nor lit).
+void check_family_map(const Image& map, const std::string& op)
 {
     require(!map.empty(), op, "depth", "the shadow map is empty (0 texels)");
-    require(map.channels() == 1, op, "depth", "the shadow map must have one channel (depth)");
-    check_bias(bias, op);
-    check_receivers(receivers, bias, op);
+    require(map.channels() == 1, op, "depth",
+            "the shadow map must have one channel (depth), got " + std::to_string(map.channels()));
     require_unit_depths(map, op);
-    if (reads_derivatives(bias) && bias.derivatives == DerivativeSource::Channels)
-        require_finite(receivers, op, "the receivers image", "receivers");
-    const Image prepared = reads_derivatives(bias) ? pcf_receivers(receivers, bias, op) : Image{};
-    const Image& rx = reads_derivatives(bias) ? prepared : receivers;
-    Image out(receivers.width(), receivers.height(), 1);
-    p.depth = detail::dims_of(map);
-    p.receivers = detail::dims_of(rx);
-    p.out = detail::dims_of(out);
-    p.bias = detail::kernel_bias(bias);
-    detail::checked_lookup(op, rx, [&](int* bad_rows) {
-        detail::receiver_lookup<K>(context.impl(), map, rx, p, out, bad_rows);
-    });
-    return out;
 }
 
-}  // namespace
+}  // namespace detail
+
+static_assert(kPcfMaxGrid == PN_PCF_MAX_GRID && kPcfGridRange.high == PN_PCF_MAX_GRID);
+static_assert(kPcfMaxTaps == PN_PCF_MAX_TAPS && kPcfTapsRange.high == PN_PCF_MAX_TAPS);
 
 Image pcf_receivers(const Image& receivers, const DepthBias& bias, const std::string& op)
 {
-    check_bias(bias, op);
-    check_receivers(receivers, bias, op);
-    if (!reads_derivatives(bias)) return receivers;
+    detail::check_family_bias(bias, op);
+    detail::check_family_receivers(receivers, bias, op);
+    if (!detail::reads_derivatives(bias)) return receivers;
     return bias.derivatives == DerivativeSource::Channels ? detail::receivers_with_channels(receivers)
                                                           : detail::receivers_with_differences(receivers);
 }
 
 Image pcf(Context& context, const Image& map, const Image& receivers, const PcfOptions& o)
 {
+    return detail::visibility_output(receivers, [&](Image& out) { pcf(context, map, receivers, o, out); });
+}
+
+Image pcf_gauss(Context& context, const Image& map, const Image& receivers, const PcfGaussOptions& o)
+{
+    return detail::visibility_output(receivers, [&](Image& out) { pcf_gauss(context, map, receivers, o, out); });
+}
+
+Image pcf_disc(Context& context, const Image& map, const Image& receivers, const PcfDiscOptions& o)
+{
+    return detail::visibility_output(receivers, [&](Image& out) { pcf_disc(context, map, receivers, o, out); });
+}
+
+void pcf(Context& context, const Image& map, const Image& receivers, const PcfOptions& o, Image& out)
+{
     const std::string op = "pcf";
     check(kRadiusRange, o.radius, op);
     PcfParams p{};
     p.radius = o.radius;
-    return run<detail::KernelId::pcf>(context, map, receivers, o.bias, p, op);
+    detail::family_lookup<detail::KernelId::pcf>(context, op, map, receivers, o.bias, p, out);
 }
 
-Image pcf_gauss(Context& context, const Image& map, const Image& receivers, const PcfGaussOptions& o)
+void pcf_gauss(Context& context, const Image& map, const Image& receivers, const PcfGaussOptions& o, Image& out)
 {
     const std::string op = "pcf-gauss";
     check(kPcfGridRange, o.grid, op);
@@ -97,10 +95,10 @@ Image pcf_gauss(Context& context, const Image& map, const Image& receivers, cons
     PcfParams p{};
     p.grid = o.grid;
     p.sigma = o.sigma;
-    return run<detail::KernelId::pcf_gauss>(context, map, receivers, o.bias, p, op);
+    detail::family_lookup<detail::KernelId::pcf_gauss>(context, op, map, receivers, o.bias, p, out);
 }
 
-Image pcf_disc(Context& context, const Image& map, const Image& receivers, const PcfDiscOptions& o)
+void pcf_disc(Context& context, const Image& map, const Image& receivers, const PcfDiscOptions& o, Image& out)
 {
     const std::string op = "pcf-disc";
     check(kPcfTapsRange, o.taps, op);
@@ -109,7 +107,7 @@ Image pcf_disc(Context& context, const Image& map, const Image& receivers, const
     p.taps = o.taps;
     p.disc_radius = o.radius;
     p.rotate = o.rotate ? 1 : 0;
-    return run<detail::KernelId::pcf_disc>(context, map, receivers, o.bias, p, op);
+    detail::family_lookup<detail::KernelId::pcf_disc>(context, op, map, receivers, o.bias, p, out);
 }
 
 }  // namespace penumbra

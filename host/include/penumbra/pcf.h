@@ -63,6 +63,12 @@ Image pcf(Context& context, const Image& map, const Image& receivers, const PcfO
 Image pcf_gauss(Context& context, const Image& map, const Image& receivers, const PcfGaussOptions& options = {});
 Image pcf_disc(Context& context, const Image& map, const Image& receivers, const PcfDiscOptions& options = {});
 
+// The same into an existing 1-channel image of the receivers' size (no
+// allocation for the constant bias). If they throw, `out` is left unspecified.
+void pcf(Context& context, const Image& map, const Image& receivers, const PcfOptions& options, Image& out);
+void pcf_gauss(Context& context, const Image& map, const Image& receivers, const PcfGaussOptions& options, Image& out);
+void pcf_disc(Context& context, const Image& map, const Image& receivers, const PcfDiscOptions& options, Image& out);
+
 // The receivers as the family's kernels read them for `bias`: u, v, z, and
 // for the slope and receiver-plane modes dz/du, dz/dv and the plane flag
 // (1: the derivatives hold; 0: they cross a depth discontinuity and the
