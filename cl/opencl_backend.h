@@ -29,23 +29,7 @@ public:
     double program_build_seconds() const override { return programs_.build_seconds(); }
     KernelPrograms& programs() { return programs_; }
 
-    // cl/opencl_lookup.cpp: every lookup-shaped entry
-    void receiver_lookup(detail::KernelId kernel, const detail::LookupSource& source, const Image& receivers,
-                         const void* params, Image& out, int* bad_rows) override;
-    // cl/opencl_moment_table.cpp
-    void build_moment_table(const Image& depth, MomentTable& table, int* bad_rows) override;
-    // cl/opencl_bilateral.cpp
-    void cross_bilateral(const Image& mask, const Image& guide, const Image* normals, const std::vector<int>& taps,
-                         const std::vector<float>& weights, bool separable, const BilateralParams& params, Image& out,
-                         int* bad_rows) override;
-    // cl/opencl_sdf.cpp
-    void sdf_grid(const float* data, std::size_t floats, const Image& positions, const Image& normals,
-                  const SdfParams& params, Image& out, int* bad_rows) override;
-    void sdf_analytic(const float* data, std::size_t floats, const Image& positions, const Image& normals,
-                      const SdfParams& params, Image& out, int* bad_rows) override;
-    // cl/opencl_moments.cpp
-    void build_encoded_table(const Image& depth, const EncodedSatParams& params, MomentTable& table,
-                             int* bad_rows) override;
+    PN_BACKEND_OPERATIONS(, override);  // host/backend/backend.h
 
 private:
     template <detail::KernelId K>

@@ -67,6 +67,52 @@ void visit_lookup(KernelId kernel, const void* params, Visitor&& visit)
         [&] { throw_not_a_lookup(kernel); });
 }
 
+// The operations every backend implements, declared once: BackendImpl
+// declares them with PN_BACKEND_OPERATIONS(virtual, = 0), each backend's class
+// with PN_BACKEND_OPERATIONS(, override), and each backend defines each in its
+// own file (simd/cpu_lookup.cpp and cl/opencl_lookup.cpp, ..._moment_table,
+// ..._bilateral, ..._sdf, ..._moments).
+//
+// Kernels check the values they read: `bad_rows` (one int per row of the
+// input they check, zeroed) gets a 1 for every row holding a value the
+// kernel cannot take; the host then finds and reports the first one.
+//
+// - receiver_lookup: lookup-shaped entry `kernel` (kernel_id.h) once per
+//   receiver: reads `source`, `receivers` (plane 0 onwards: u, v, z), writes
+//   out's plane 0; `params` points to the entry's complete Params (use the
+//   typed receiver_lookup<K> below, which checks that). Throws Error for a
+//   kernel that is not lookup-shaped. bad_rows: per receiver row.
+// - build_moment_table: fills `table` from `depth`; bad_rows: per depth row.
+// - cross_bilateral: the cross-bilateral filter (kernels/bilateral.h) of
+//   `mask` into `out`. `normals` is null unless params.use_normals; `taps`
+//   holds the window's offsets as (dx, dy) pairs (separable: (d, d)),
+//   `weights` their spatial weights and base-2 exponents as pairs; `params`
+//   is complete but for `pass` and `pass_first_row`, which the separable
+//   schedule sets. bad_rows: per mask row.
+// - sdf_grid, sdf_analytic: SDF soft shadows (kernels/sdf.h) through a
+//   distance grid (`data`: the nodes) or analytic primitives (`data`: the
+//   packed records, `floats` of them, possibly none). `normals` is
+//   `positions` when params.normal_offset is 0; `out` has 1 or 2 planes;
+//   `params` is complete; bad_rows: per receiver row.
+// - build_encoded_table: the moment family (kernels/encoded_table.h, msm.h,
+//   msm_soft.h, evsm.h). Fills `table` (zeroed, params.channels planes) with
+//   the sums of encoded texels; `params` is complete but for columns and
+//   band_height, which the schedule sets. bad_rows: per depth row.
+#define PN_BACKEND_OPERATIONS(VIRTUAL, SPECIFIER)                                                                  \
+    VIRTUAL void receiver_lookup(::penumbra::detail::KernelId kernel,                                             \
+                                 const ::penumbra::detail::LookupSource& source, const Image& receivers,          \
+                                 const void* params, Image& out, int* bad_rows) SPECIFIER;                        \
+    VIRTUAL void build_moment_table(const Image& depth, MomentTable& table, int* bad_rows) SPECIFIER;            \
+    VIRTUAL void cross_bilateral(const Image& mask, const Image& guide, const Image* normals,                     \
+                                 const std::vector<int>& taps, const std::vector<float>& weights, bool separable, \
+                                 const BilateralParams& params, Image& out, int* bad_rows) SPECIFIER;             \
+    VIRTUAL void sdf_grid(const float* data, std::size_t floats, const Image& positions, const Image& normals,   \
+                          const SdfParams& params, Image& out, int* bad_rows) SPECIFIER;                          \
+    VIRTUAL void sdf_analytic(const float* data, std::size_t floats, const Image& positions,                     \
+                              const Image& normals, const SdfParams& params, Image& out, int* bad_rows) SPECIFIER; \
+    VIRTUAL void build_encoded_table(const Image& depth, const EncodedSatParams& params, MomentTable& table,      \
+                                     int* bad_rows) SPECIFIER
+
 class BackendImpl {
 public:
     virtual ~BackendImpl() = default;
@@ -74,42 +120,7 @@ public:
     virtual std::string isa() const { return {}; }
     virtual double program_build_seconds() const { return 0.0; }
 
-    // Kernels check the values they read: `bad_rows` (one int per row of the
-    // input they check, zeroed) gets a 1 for every row holding a value the
-    // kernel cannot take; the host then finds and reports the first one.
-
-    // Lookup-shaped entry `kernel` (kernel_id.h) once per receiver: reads
-    // `source`, `receivers` (plane 0 onwards: u, v, z), writes out's plane 0;
-    // `params` points to the entry's complete Params (use the typed
-    // receiver_lookup<K> below, which checks that). Throws Error for a kernel
-    // that is not lookup-shaped. bad_rows: per receiver row.
-    virtual void receiver_lookup(KernelId kernel, const LookupSource& source, const Image& receivers,
-                                 const void* params, Image& out, int* bad_rows) = 0;
-    // Fills `table` from `depth`; bad_rows: per depth row.
-    virtual void build_moment_table(const Image& depth, MomentTable& table, int* bad_rows) = 0;
-    // Cross-bilateral filter (kernels/bilateral.h) of `mask` into `out`.
-    // `normals` is null unless params.use_normals; `taps` holds the window's
-    // offsets as (dx, dy) pairs (separable: (d, d)), `weights` their spatial
-    // weights and base-2 exponents as pairs; `params` is complete but for
-    // `pass` and `pass_first_row`, which the separable schedule sets.
-    // bad_rows: per mask row.
-    virtual void cross_bilateral(const Image& mask, const Image& guide, const Image* normals,
-                                 const std::vector<int>& taps, const std::vector<float>& weights, bool separable,
-                                 const BilateralParams& params, Image& out, int* bad_rows) = 0;
-    // SDF soft shadows (kernels/sdf.h) through a distance grid (`data`: the
-    // nodes) or analytic primitives (`data`: the packed records, `floats` of
-    // them, possibly none). `normals` is `positions` when params.normal_offset
-    // is 0; `out` has 1 or 2 planes; `params` is complete; bad_rows: per receiver row.
-    virtual void sdf_grid(const float* data, std::size_t floats, const Image& positions, const Image& normals,
-                          const SdfParams& params, Image& out, int* bad_rows) = 0;
-    virtual void sdf_analytic(const float* data, std::size_t floats, const Image& positions, const Image& normals,
-                              const SdfParams& params, Image& out, int* bad_rows) = 0;
-    // The moment family (kernels/encoded_table.h, msm.h, msm_soft.h, evsm.h).
-    // Fills `table` (zeroed, params.channels planes) with the sums of encoded
-    // texels; `params` is complete but for columns and band_height, which the
-    // schedule sets. bad_rows: per depth row.
-    virtual void build_encoded_table(const Image& depth, const EncodedSatParams& params, MomentTable& table,
-                                     int* bad_rows) = 0;
+    PN_BACKEND_OPERATIONS(virtual, = 0);
 };
 
 // The typed front end of BackendImpl::receiver_lookup: K's own Params, so a

@@ -51,15 +51,8 @@ void check_output(const std::string& op, const Image& receivers, const Image& ou
 
 }  // namespace
 
-Image vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options)
-{
-    return detail::visibility_output(receivers, [&](Image& out) { vsm(context, table, receivers, options, out); });
-}
-
-Image vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options)
-{
-    return detail::visibility_output(receivers, [&](Image& out) { vssm(context, table, receivers, options, out); });
-}
+PN_ALLOCATING_VISIBILITY(vsm, MomentTable, VsmOptions)
+PN_ALLOCATING_VISIBILITY(vssm, MomentTable, VssmOptions)
 
 void vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options, Image& out)
 {

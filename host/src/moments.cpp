@@ -231,15 +231,8 @@ EvsmTable build_evsm_table(Context& context, const Image& depth, const EvsmWarp&
 
 // ---- MSM -----------------------------------------------------------------------
 
-Image msm(Context& context, const MsmTable& table, const Image& receivers, const MsmOptions& options)
-{
-    return detail::visibility_output(receivers, [&](Image& out) { msm(context, table, receivers, options, out); });
-}
-
-Image msm_soft(Context& context, const MsmTable& table, const Image& receivers, const MsmSoftOptions& options)
-{
-    return detail::visibility_output(receivers, [&](Image& out) { msm_soft(context, table, receivers, options, out); });
-}
+PN_ALLOCATING_VISIBILITY(msm, MsmTable, MsmOptions)
+PN_ALLOCATING_VISIBILITY(msm_soft, MsmTable, MsmSoftOptions)
 
 void msm(Context& context, const MsmTable& table, const Image& receivers, const MsmOptions& options, Image& out)
 {
@@ -271,10 +264,7 @@ void msm_soft(Context& context, const MsmTable& table, const Image& receivers, c
 
 // ---- EVSM ----------------------------------------------------------------------
 
-Image evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options)
-{
-    return detail::visibility_output(receivers, [&](Image& out) { evsm(context, table, receivers, options, out); });
-}
+PN_ALLOCATING_VISIBILITY(evsm, EvsmTable, EvsmOptions)
 
 void evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options, Image& out)
 {

@@ -63,20 +63,9 @@ Image pcf_receivers(const Image& receivers, const DepthBias& bias, const std::st
                                                           : detail::receivers_with_differences(receivers);
 }
 
-Image pcf(Context& context, const Image& map, const Image& receivers, const PcfOptions& o)
-{
-    return detail::visibility_output(receivers, [&](Image& out) { pcf(context, map, receivers, o, out); });
-}
-
-Image pcf_gauss(Context& context, const Image& map, const Image& receivers, const PcfGaussOptions& o)
-{
-    return detail::visibility_output(receivers, [&](Image& out) { pcf_gauss(context, map, receivers, o, out); });
-}
-
-Image pcf_disc(Context& context, const Image& map, const Image& receivers, const PcfDiscOptions& o)
-{
-    return detail::visibility_output(receivers, [&](Image& out) { pcf_disc(context, map, receivers, o, out); });
-}
+PN_ALLOCATING_VISIBILITY(pcf, Image, PcfOptions)
+PN_ALLOCATING_VISIBILITY(pcf_gauss, Image, PcfGaussOptions)
+PN_ALLOCATING_VISIBILITY(pcf_disc, Image, PcfDiscOptions)
 
 void pcf(Context& context, const Image& map, const Image& receivers, const PcfOptions& o, Image& out)
 {

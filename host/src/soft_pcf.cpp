@@ -21,15 +21,8 @@ void check_samples(const std::string& op, int blocker_samples, int filter_sample
 
 }  // namespace
 
-Image pcss(Context& context, const Image& map, const Image& receivers, const PcssOptions& options)
-{
-    return detail::visibility_output(receivers, [&](Image& out) { pcss(context, map, receivers, options, out); });
-}
-
-Image burley(Context& context, const Image& map, const Image& receivers, const BurleyOptions& options)
-{
-    return detail::visibility_output(receivers, [&](Image& out) { burley(context, map, receivers, options, out); });
-}
+PN_ALLOCATING_VISIBILITY(pcss, Image, PcssOptions)
+PN_ALLOCATING_VISIBILITY(burley, Image, BurleyOptions)
 
 void pcss(Context& context, const Image& map, const Image& receivers, const PcssOptions& options, Image& out)
 {

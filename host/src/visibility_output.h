@@ -16,3 +16,14 @@ Image visibility_output(const Image& receivers, Write write)
 }
 
 }  // namespace penumbra::detail
+
+// Defines the allocating form of a visibility operation from its form into an
+// existing output: `Image NAME(Context&, const SOURCE&, const Image& receivers,
+// const OPTIONS&)` calls `NAME(..., out)` on a fresh 1-channel image. Used at
+// namespace penumbra scope, once per public operation.
+#define PN_ALLOCATING_VISIBILITY(NAME, SOURCE, OPTIONS)                                                   \
+    Image NAME(Context& context, const SOURCE& source, const Image& receivers, const OPTIONS& options)    \
+    {                                                                                                     \
+        return detail::visibility_output(receivers,                                                      \
+                                         [&](Image& out) { NAME(context, source, receivers, options, out); }); \
+    }

@@ -21,6 +21,7 @@
 #include "penumbra/soft_pcf.h"
 #include "support/backends.h"
 #include "support/maps.h"
+#include "support/pcf_shade.h"
 #include "support/soft_pcf_reference.h"
 
 namespace penumbra {
@@ -35,15 +36,9 @@ using testing::RefBias;
 using testing::RefBiasMode;
 
 template <KernelId K>
-Image shade(Context& context, const Image& map, const Image& receivers, SoftPcfParams p)
+Image shade(Context& context, const Image& map, const Image& receivers, const SoftPcfParams& p)
 {
-    Image out(receivers.width(), receivers.height(), 1);
-    std::vector<int> bad_rows(std::size_t(receivers.height()), 0);
-    p.depth = detail::dims_of(map);
-    p.receivers = detail::dims_of(receivers);
-    p.out = detail::dims_of(out);
-    detail::receiver_lookup<K>(context.impl(), map, receivers, p, out, bad_rows.data());
-    return out;
+    return testing::pcf_shade_on<K>(context, map, receivers, p);
 }
 
 SoftPcfParams pcss_params(const PcssSettings& s, const RefBias& b)

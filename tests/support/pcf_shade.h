@@ -1,4 +1,4 @@
-// Runs one entry of the percentage-closer family with complete PcfParams on a
+// Runs one entry of the percentage-closer family with complete parameters on a
 // backend by name (tests/support/backends.h), for the kernel tests: the
 // kernel's own contract, below the library's operation and its checks.
 #pragma once
@@ -15,8 +15,9 @@ namespace penumbra::testing {
 
 enum class PcfKernel { Box, Gauss, Disc };
 
-template <detail::KernelId K>
-Image pcf_shade_on(Context& context, const Image& map, const Image& receivers, PcfParams p)
+// Params: PcfParams, or SoftPcfParams for pcss and burley.
+template <detail::KernelId K, class Params>
+Image pcf_shade_on(Context& context, const Image& map, const Image& receivers, Params p)
 {
     Image out(receivers.width(), receivers.height(), 1);
     std::vector<int> bad_rows(std::size_t(receivers.height()), 0);
