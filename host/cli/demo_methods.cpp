@@ -41,7 +41,7 @@ struct SweepPoint {
 DemoMethod table_method(const char* name, const std::vector<SweepPoint>& sweep)
 {
     const Method& method = find_method(name);
-    DemoMethod m{.name = method.name, .preview_setting = kMiddleSetting};
+    DemoMethod m{.name = method.name, .settings = {}, .preview_setting = kMiddleSetting};
     for (const SweepPoint& point : sweep)
         m.settings.push_back({.label = point.label,
                               .run = [&method, s = point.settings](Context& ctx, const DemoFrame& f) {
@@ -175,7 +175,7 @@ enum class SdfSource { Grid, Analytic };
 DemoMethod sdf_method(const reference::Scene& scene, int map_size, SdfSource source)
 {
     const bool analytic = source == SdfSource::Analytic;
-    DemoMethod m{.name = analytic ? "sdf-analytic" : "sdf", .preview_setting = kFirstSetting};
+    DemoMethod m{.name = analytic ? "sdf-analytic" : "sdf", .settings = {}, .preview_setting = kFirstSetting};
     const std::size_t nodes = map_size >= 1024 ? reference::kSdfGridNodes : reference::kSdfGridNodes / 8;
     // Baked on first use: listing the methods (to check --method, to count the
     // work) must not cost a bake per scene, seconds each.
@@ -216,7 +216,7 @@ Image blurred(Context& ctx, const DemoFrame& f, const Image& visibility)
 // `source` at the settings numbered `blurred_settings`, each followed by the blur.
 DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vector<int> blurred_settings)
 {
-    DemoMethod m{.name = name, .preview_setting = kFirstSetting};
+    DemoMethod m{.name = name, .settings = {}, .preview_setting = kFirstSetting};
     for (int index : blurred_settings) {
         DemoSetting inner = source.settings[std::size_t(index)];
         m.settings.push_back({.label = inner.label + " +blur", .run = [inner](Context& ctx, const DemoFrame& f) {

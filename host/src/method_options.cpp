@@ -52,6 +52,15 @@ void set_float(const Method& m, const std::string& text, MethodSettings& s)
     s.*Field = value;
 }
 
+// One option for every window: the box of pcf has its own reason for the limit.
+void set_radius(const Method& m, const std::string& text, MethodSettings& s)
+{
+    const ParameterRange& range = std::string_view(m.name) == "pcf" ? kPcfRadiusRange : kRadiusRange;
+    const int value = parse_int(m, range.name, text);
+    check(range, value, m.name);
+    s.radius = value;
+}
+
 void set_quantization(const Method& m, const std::string& text, MethodSettings& s)
 {
     if (text != "16") throw bad_value(m, "quantize", "'" + text + "' is not 16 (the only opt-in storage)");
@@ -160,8 +169,7 @@ const std::vector<MethodOption>& method_options()
 {
     using S = MethodSettings;
     static const std::vector<MethodOption> options = {
-        {"radius", "R", "box radius in texels, window (2R+1)^2", "2", &kRadiusRange, true,
-         set_int<&S::radius, kRadiusRange>},
+        {"radius", "R", "box radius in texels, window (2R+1)^2", "2", &kRadiusRange, true, set_radius},
         {"min-variance", "V", "variance floor in depth^2", "2e-5", &kMinVarianceRange, true,
          set_float<&S::min_variance, kMinVarianceRange>},
         {"bleed", "B", "light-bleeding reduction (0 = off)", "0", &kBleedRange, true,

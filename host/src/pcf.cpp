@@ -70,7 +70,7 @@ PN_ALLOCATING_VISIBILITY(pcf_disc, Image, PcfDiscOptions)
 void pcf(Context& context, const Image& map, const Image& receivers, const PcfOptions& o, Image& out)
 {
     const std::string op = "pcf";
-    check(kRadiusRange, o.radius, op);
+    check(kPcfRadiusRange, o.radius, op);
     PcfParams p{};
     p.radius = o.radius;
     detail::family_lookup<detail::KernelId::pcf>(context, op, map, receivers, o.bias, p, out);

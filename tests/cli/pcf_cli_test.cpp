@@ -99,6 +99,7 @@ TEST_F(PcfCli, BadValuesAreOneLineAndExitTwo)
 {
     const std::vector<std::tuple<std::string, std::vector<std::string>, std::string>> cases = {
         {"pcf", {"--radius", "-1"}, "--radius"},
+        {"pcf", {"--radius", "128"}, "the widest box pcf filters"},  // not a table's limit: pcf has none
         {"pcf-disc", {"--taps", "-1"}, "--taps"},
         {"pcf-disc", {"--taps", "0"}, "--taps"},
         {"pcf-disc", {"--taps", "257"}, "--taps"},

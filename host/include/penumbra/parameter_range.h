@@ -59,6 +59,12 @@ inline constexpr ParameterRange kPcfTapsRange{
     "taps", "taps", 1, 256, false, false,
     ", the stated limit of the disc (its 16 rotations already spread 4096 distinct taps over 4x4 receivers); "
     "use fewer taps"};
+// pcf reads its box texel by texel, no table: the same limit as the tables'
+// windows (one radius option for every method), for pcf's own reason.
+inline constexpr ParameterRange kPcfRadiusRange{
+    "radius", "radius", 0, kExactMaxRadius, false, false,
+    ", the widest box pcf filters (255x255 texels, 65025 taps a receiver); for wider penumbrae use pcf-disc, "
+    "pcss or vssm"};
 inline constexpr ParameterRange kPcfDiscRadiusRange{"disc-radius", "disc radius", 0, kNoUpperBound, true, true};
 inline constexpr ParameterRange kSlopeScaleRange{"slope-scale", "slope scale", 0, kNoUpperBound, false, true};
 // Depth units: a bias beyond the whole depth range [0, 1] means nothing.
