@@ -158,6 +158,9 @@ void require_finite(const Image& image, const std::string& operation, const std:
 
 void require_unit_depths(const Image& depth, const std::string& operation)
 {
+    // One parallel, vectorised pass for the common case (NaN fails it too);
+    // only a bad map pays the slow passes that find and name the first value.
+    if (depth.channels() == 1 && channel_within(depth, 0, 0.0f, 1.0f)) return;
     require_finite(depth, operation, "the shadow map", "depth");
     for (int y = 0; y < depth.height(); ++y) {
         const float* row = depth.row(0, y);
