@@ -37,12 +37,25 @@ struct Entry {
     std::vector<std::pair<std::string, std::string>> options;
 };
 
+// Burley's cone with its slope in world units (penumbra::world_cone) from
+// the scene's light, as the options that carry it.
+std::vector<std::pair<std::string, std::string>> world_cone_options(const ref::Scene& scene, const std::string& light,
+                                                                    float world_slope)
+{
+    const penumbra::BurleyOptions cone = penumbra::world_cone({}, world_slope, ref::light_frustum(scene));
+    return {{"max-radius", light},
+            {"bias-slope", std::to_string(cone.bias_slope)},
+            {"bias-slope-per-depth", std::to_string(cone.bias_slope_per_depth)}};
+}
+
 std::vector<Entry> entries(const ref::Scene& scene)
 {
     const std::string light = std::to_string(ref::light_size(scene));
     return {{"pcf", {{"radius", "2"}}},
             {"pcss", {{"light-size", light}}},
             {"burley", {{"max-radius", light}}},
+            {"burley", world_cone_options(scene, light, 2.0f)},
+            {"burley", world_cone_options(scene, light, 1.0f)},
             {"burley", {{"max-radius", light}, {"bias-slope", "0.5"}}},
             {"burley", {{"max-radius", light}, {"bias-slope", "0"}, {"depth-bias", "5e-4"}}},
             {"vssm", {{"light-size", light}}},

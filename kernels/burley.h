@@ -8,9 +8,13 @@
  *    bias, kernels/depth_bias.h, whose constant mode is Burley's), so the taps lie on a cone
  *    whose tip (bias base_bias, near 0) is the receiver and which opens
  *    towards the light; a tilted receiver does not cut through it unless its
- *    depth changes faster than bias_slope per texture unit (slope 2.0 by
- *    default, the paper's). The paper writes p.z + bias with its depths
- *    growing towards the light; here z grows away from it (lit where
+ *    depth changes faster than the slope per texture unit (2.0 by default,
+ *    the paper's). The slope is bias_slope + bias_slope_per_depth * z (z
+ *    clamped into [0, 1]): a texture unit's world width grows with depth
+ *    under a perspective light, so a slope in world units (the paper's
+ *    shadow space: depth per lateral distance) is affine in z here
+ *    (penumbra/soft_pcf.h, world_cone). The paper writes p.z + bias with its
+ *    depths growing towards the light; here z grows away from it (lit where
  *    depth >= the comparison depth, as in pcf), so the cone subtracts.
  *  - Depth pass (sampleDepth, note 4): blocker_samples Hammersley taps with
  *    radius y times max_radius R (concentrated at the centre); each blocking
@@ -30,13 +34,19 @@
 #ifndef PENUMBRA_BURLEY_H
 #define PENUMBRA_BURLEY_H
 
+/* The cone's slope at this receiver, depth per texture unit. */
+PN_FN pn_float burley_cone_slope(const SoftPcfParams p, PcfReceiver r)
+{
+    return p.bias_slope + p.bias_slope_per_depth * pn_clamp(r.z, 0.0f, 1.0f);
+}
+
 /* sampleDepth: the cone-weighted mean depth of the blocking taps, the taps
  * concentrated at the centre (radius y), each compared on the cone and
  * weighted 1 - 0.9 r / R (r / R = y). */
 PN_FN pn_float burley_blocker_depth(PN_GLOBAL const float* depth, const SoftPcfParams p, PcfReceiver r,
-                                    pn_mask* found)
+                                    pn_float cone_slope, pn_mask* found)
 {
-    return hammersley_blocker_depth(depth, p.depth, p.bias, r, p.max_radius, p.blocker_samples, 0, p.bias_slope,
+    return hammersley_blocker_depth(depth, p.depth, p.bias, r, p.max_radius, p.blocker_samples, 0, cone_slope,
                                     0.9f, found);
 }
 
@@ -52,14 +62,15 @@ PN_KERNEL void burley(PN_GLOBAL const float* depth, PN_GLOBAL const float* recei
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
     const PcfReceiver r = pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, pn_x, pn_y, bad_rows);
+    const pn_float cone_slope = burley_cone_slope(p, r);
     pn_mask found;
-    const pn_float z_blocker = burley_blocker_depth(depth, p, r, &found);
+    const pn_float z_blocker = burley_blocker_depth(depth, p, r, cone_slope, &found);
     /* found implies z > z_blocker >= 0 for a valid map; the floor keeps the
      * lanes without a blocker (whose result is discarded) finite. */
     const pn_float radius =
         p.min_radius + (p.max_radius - p.min_radius) * (1.0f - z_blocker / pn_max(r.z, 1e-30f));
     const pn_float occlusion =
-        1.0f - hammersley_disc_visibility(depth, p.depth, p.bias, r, radius, p.filter_samples, p.bias_slope);
+        1.0f - hammersley_disc_visibility(depth, p.depth, p.bias, r, radius, p.filter_samples, cone_slope);
     const pn_float visibility = 1.0f - occlusion * burley_opacity(p, r.z, z_blocker);
     pn_store(out, p.out, pn_x, pn_y, pn_select(found, visibility, 1.0f));
 }

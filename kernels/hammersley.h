@@ -165,7 +165,7 @@ PN_FN DiscSample hammersley_sample(PN_GLOBAL const float* depth, pn_dims map, Pc
  * rho (texture units) from the centre lowered by the cone slope * rho
  * (slope 0: the family's bias alone; Burley's bias cone otherwise). */
 PN_FN pn_float hammersley_disc_visibility(PN_GLOBAL const float* depth, pn_dims map, PcfBias b, PcfReceiver r,
-                                          pn_float radius, int n, float slope)
+                                          pn_float radius, int n, pn_float slope)
 {
     pn_float lit = 0.0f;
     DiscWalk walk = hammersley_walk(n, 1);
@@ -184,7 +184,7 @@ PN_FN pn_float hammersley_disc_visibility(PN_GLOBAL const float* depth, pn_dims 
  * Burley's 1 - 0.9 r / R). Returns the weighted mean depth of the blocking
  * taps; `found` marks the lanes with one (weights stay >= 0.1 > 0). */
 PN_FN pn_float hammersley_blocker_depth(PN_GLOBAL const float* depth, pn_dims map, PcfBias b, PcfReceiver r,
-                                        pn_float radius, int n, int uniform_density, float cone_slope,
+                                        pn_float radius, int n, int uniform_density, pn_float cone_slope,
                                         float weight_falloff, pn_mask* found)
 {
     pn_float weighted = 0.0f, total = 0.0f;

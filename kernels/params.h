@@ -197,7 +197,8 @@ typedef struct {
     float light_size;    /* pcss: search diameter, and L in w = L (z - z_b) / z_b */
     float min_radius;    /* burley: filter radius at contact */
     float max_radius;    /* burley: depth-pass radius R and the widest filter */
-    float bias_slope;    /* burley: the cone's slope, depth per texture unit */
+    float bias_slope;    /* burley: the cone's slope at z = 0, depth per texture unit */
+    float bias_slope_per_depth; /* burley: the slope's growth per unit of receiver depth z */
     float falloff;       /* burley: opacity falloff distance in depth units; 0 = off */
 } SoftPcfParams;
 

@@ -200,6 +200,9 @@ const std::vector<MethodOption>& method_options()
          false, set_float<&S::max_radius, kMaxRadiusRange>},
         {"bias-slope", "S", "the bias cone's slope: depth per texture unit of tap radius", "2 (Burley's)",
          &kBiasSlopeRange, false, set_float<&S::bias_slope, kBiasSlopeRange>},
+        {"bias-slope-per-depth", "K", "added to the cone's slope per unit of receiver depth z (a perspective light: "
+         "see world_cone in penumbra/soft_pcf.h)", "0", &kSlopePerDepthRange, false,
+         set_float<&S::bias_slope_per_depth, kSlopePerDepthRange>},
         {"falloff", "D", "shadow opacity 1 - (z - z_blocker) / D, clamped (0 = off)", "0", &kFalloffRange, false,
          set_float<&S::falloff, kFalloffRange>},
         {"bias-mode", "M",

@@ -107,7 +107,13 @@ void shade_pcss(Context& context, const PreparedMap& prepared, const Image& rece
 void shade_burley(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                   Image& out)
 {
-    BurleyOptions options{s.min_radius, s.max_radius, s.bias_slope, s.falloff, s.blocker_samples, s.filter_samples};
+    BurleyOptions options{.min_radius = s.min_radius,
+                          .max_radius = s.max_radius,
+                          .bias_slope = s.bias_slope,
+                          .bias_slope_per_depth = s.bias_slope_per_depth,
+                          .falloff = s.falloff,
+                          .blocker_samples = s.blocker_samples,
+                          .filter_samples = s.filter_samples};
     options.bias = family_bias(s, options.bias.constant);
     burley(context, prepared.map(), receivers, options, out);
 }
@@ -160,7 +166,7 @@ const std::vector<Method>& methods()
          prepare_map, shade_pcss},
         {"burley", "soft shadows on the bias cone, weighted blocker depth (Burley, Disney)",
          {"min-radius", "max-radius", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale",
-          "bias-derivatives", "bias-slope", "falloff", "blocker-samples", "filter-samples"},
+          "bias-derivatives", "bias-slope", "bias-slope-per-depth", "falloff", "blocker-samples", "filter-samples"},
          prepare_map, shade_burley},
     };
     return table;

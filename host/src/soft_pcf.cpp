@@ -3,6 +3,7 @@
 // shadow map itself through the family's checked lookup (pcf_family.h).
 #include "penumbra/soft_pcf.h"
 
+#include <cmath>
 #include <string>
 
 #include "pcf_family.h"
@@ -45,6 +46,7 @@ void burley(Context& context, const Image& map, const Image& receivers, const Bu
             "min-radius " + std::to_string(options.min_radius) + " exceeds max-radius " +
                 std::to_string(options.max_radius));
     check(kBiasSlopeRange, options.bias_slope, op);
+    check(kSlopeAtFarRange, double(options.bias_slope) + double(options.bias_slope_per_depth), op);
     check(kFalloffRange, options.falloff, op);
     check_samples(op, options.blocker_samples, options.filter_samples);
     SoftPcfParams p{};
@@ -53,8 +55,28 @@ void burley(Context& context, const Image& map, const Image& receivers, const Bu
     p.min_radius = options.min_radius;
     p.max_radius = options.max_radius;
     p.bias_slope = options.bias_slope;
+    p.bias_slope_per_depth = options.bias_slope_per_depth;
     p.falloff = options.falloff;
     detail::family_lookup<detail::KernelId::burley>(context, op, map, receivers, options.bias, p, out);
+}
+
+BurleyOptions world_cone(BurleyOptions options, float world_slope, const LightFrustum& light)
+{
+    const std::string op = "world_cone";
+    check(kBiasSlopeRange, world_slope, op);
+    const auto positive_width = [](float w) { return std::isfinite(w) && w > 0.0f; };
+    require(positive_width(light.width_at_near) && positive_width(light.width_at_far), op, "light",
+            "the frustum's widths must be finite and > 0 (the map's world width at the near and far planes)");
+    require(std::isfinite(light.near) && std::isfinite(light.far) && light.near >= 0.0f && light.far > light.near, op,
+            "light", "the frustum needs 0 <= near < far, both finite");
+    // In double: the two products are the slope at z = 0 and at z = 1.
+    const double per_depth_unit = double(world_slope) / (double(light.far) - double(light.near));
+    const double at_near = per_depth_unit * light.width_at_near, at_far = per_depth_unit * light.width_at_far;
+    check(kBiasSlopeRange, at_near, op);
+    check(kSlopeAtFarRange, at_far, op);
+    options.bias_slope = float(at_near);
+    options.bias_slope_per_depth = float(at_far - at_near);
+    return options;
 }
 
 }  // namespace penumbra

@@ -44,4 +44,12 @@ Ray LightProjection::ray_through(double u, double v) const
     return {origin_ + basis_.to_world({x, y, 0}), basis_.n};
 }
 
+LightFrustum light_frustum(const Scene& scene)
+{
+    const LightProjection light(scene);
+    const LightCamera& camera = scene.light_camera;
+    return {float(light.texture_unit_length(camera.near)), float(light.texture_unit_length(camera.far)),
+            float(camera.near), float(camera.far)};
+}
+
 }  // namespace penumbra::reference

@@ -39,7 +39,8 @@ TEST_F(SoftPcfCli, BothShadeWithTheirOptionsAndPresets)
              {"pcss", {"--preset", "godot-ultra", "--light-size", "0.03", "--depth-bias", "0.001"}},
              {"burley", {}},
              {"burley", {"--min-radius", "0.001", "--max-radius", "0.02", "--bias-slope", "1", "--falloff", "0.5",
-                         "--blocker-samples", "32", "--filter-samples", "32"}}}) {
+                         "--blocker-samples", "32", "--filter-samples", "32"}},
+             {"burley", {"--bias-slope", "0.01", "--bias-slope-per-depth", "2.3"}}}) {
         const testing::CliRun run = shade(method, options);
         ASSERT_EQ(run.exit_code, 0) << method << ": " << run.err;
         const Image out = read_exr(path("out.exr"), {"Y"});
@@ -73,6 +74,9 @@ TEST_F(SoftPcfCli, BadValuesAreOneLineAndExitTwo)
         {"burley", {"--min-radius", "0.02", "--max-radius", "0.01"}},
         {"burley", {"--bias-slope", "-2"}},        {"burley", {"--falloff", "nan"}},
         {"burley", {"--preset", "hdrp"}},          {"burley", {"--filter-samples", "x"}},
+        {"burley", {"--bias-slope-per-depth", "-2000"}},
+        // Each in range, but the slope at z = 1 (1 - 3) is negative.
+        {"burley", {"--bias-slope-per-depth", "-3", "--bias-slope", "1"}},
     };
     for (const auto& [method, options] : cases) {
         const testing::CliRun run = shade(method, options);

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -63,6 +64,7 @@ SoftPcfParams burley_params(const BurleySettings& s, const RefBias& b)
     p.min_radius = float(s.min_radius);
     p.max_radius = float(s.max_radius);
     p.bias_slope = float(s.bias_slope);
+    p.bias_slope_per_depth = float(s.bias_slope_per_depth);
     p.falloff = float(s.falloff);
     return p;
 }
@@ -242,6 +244,8 @@ PN_BACKEND_TEST(SoftPcf, BothAgreeWithTheFloat64ReferenceAtOddSizes)
     const int grids[][2] = {{1, 1}, {7, 3}, {15, 2}, {17, 2}, {33, 1}, {49, 1}};
     const PcssSettings pcss{0.15, 16, 24};
     const BurleySettings burley{0.01, 0.12, 2.0, 0.5, 16, 24};
+    // A world cone (world_cone's form): the slope grows with the receiver's depth.
+    const BurleySettings burley_world{0.01, 0.12, 0.25, 0.5, 16, 24, 3.5};
     std::uint32_t seed = 1;
     Coverage coverage;
     for (const auto& m : maps)
@@ -260,6 +264,10 @@ PN_BACKEND_TEST(SoftPcf, BothAgreeWithTheFloat64ReferenceAtOddSizes)
                     ctx, map, rx, burley_params(burley, bias),
                     [&](const testing::RefReceiver& r) { return testing::burley_lookup(map, r, bias, burley); },
                     "burley " + what, coverage);
+                expect_matches_reference<KernelId::burley>(
+                    ctx, map, rx, burley_params(burley_world, bias),
+                    [&](const testing::RefReceiver& r) { return testing::burley_lookup(map, r, bias, burley_world); },
+                    "burley, world cone, " + what, coverage);
             }
     EXPECT_LE(coverage.skipped, (coverage.compared + coverage.skipped) / 20);
     std::cout << coverage.compared << " receivers compared, " << coverage.skipped << " left out for their margin\n";
@@ -407,7 +415,79 @@ PN_BACKEND_TEST(SoftPcf, SteepReceiverWithZeroBaseBiasHasNoAcneOnTheCone)
     EXPECT_GT(acne, W * H / 2);
 }
 
+// The perspective light of the world-cone cases: the reference scenes'
+// default camera (60 degrees, near 0.1, far 20).
+constexpr double kFov = 60 * std::numbers::pi / 180, kNear = 0.1, kFar = 20;
+
+// The map's world width at linear depth z: 2 d tan(fov/2), d = near + z (far - near).
+double map_width_at(double z) { return 2 * (kNear + z * (kFar - kNear)) * std::tan(kFov / 2); }
+
+LightFrustum perspective_frustum()
+{
+    return {float(map_width_at(0)), float(map_width_at(1)), float(kNear), float(kFar)};
+}
+
+// A plane tilted at world slope g under a perspective light, seen in the map:
+// its depth changes by g per world unit across u, g w(z) / (far - near) per
+// texture unit, so dz/du = alpha (q + z), alpha = 2 g tan(fov/2), q = near /
+// (far - near): z(u) = (z0 + q) e^(alpha u) - q. Across one row (the taps'
+// v clamps into it) q + z grows 10x (g = 2: z from 0.05 to 0.55), and the
+// plane's slope per texture unit with it. world_cone(2.2 g) makes the cone
+// 2.2 times the plane's slope at every depth, above the 2 the no-acne bound
+// asks for (the steep-receiver case above; z is convex in u, so towards the
+// light it falls no faster than at the receiver): no acne anywhere, with zero
+// base bias. One slope per texture unit, set so for the nearest receiver, is
+// too shallow beyond u = ln(2.2) / alpha = 0.34: straight taps there see acne.
+PN_BACKEND_TEST(SoftPcf, WorldConeClearsAPerspectivePlaneAtEveryDepth)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    const int W = 64;
+    const double g = 2.0, alpha = 2 * g * std::tan(kFov / 2), q = kNear / (kFar - kNear), z0 = 0.05;
+    Image map(W, 1, 1), rx(W, 1, 3);
+    for (int x = 0; x < W; ++x) {
+        const double u = (x + 0.5) / W;
+        map.at(0, x, 0) = float((z0 + q) * std::exp(alpha * u) - q);
+        rx.at(0, x, 0) = float(u);
+        rx.at(1, x, 0) = 0.5f;
+        rx.at(2, x, 0) = map.at(0, x, 0);
+    }
+    BurleyOptions options{.min_radius = 0.01f, .max_radius = 0.1f, .blocker_samples = 32, .filter_samples = 32};
+    options.bias = DepthBias{BiasMode::Constant, 0.0f};
+    const BurleyOptions world = world_cone(options, float(2.2 * g), perspective_frustum());
+    ASSERT_GT(world.bias_slope_per_depth, 0.0f);
+    const Image cone = burley(ctx, map, rx, world);
+    BurleyOptions single = world;
+    single.bias_slope = float(2.2 * g * map_width_at(map.at(0, 0, 0)) / (kFar - kNear));
+    single.bias_slope_per_depth = 0;
+    const Image flat = burley(ctx, map, rx, single);
+    int acne = 0;
+    for (int x = 0; x < W; ++x) {
+        EXPECT_EQ(cone.at(0, x, 0), 1.0f) << x;
+        acne += flat.at(0, x, 0) < 1.0f;
+    }
+    EXPECT_GT(acne, W / 2);
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, SoftPcf, ::testing::ValuesIn(backend_names()), backend_test_name);
+
+// world_cone against its closed form: at depth z the cone's slope per texture
+// unit times (far - near) / w(z) is the world slope, for a perspective and an
+// orthographic light (w constant: no growth with depth); the rest of the
+// options are kept.
+TEST(SoftPcfOperations, WorldConeIsTheWorldSlopeAtEveryDepth)
+{
+    BurleyOptions options;
+    options.max_radius = 0.03f;
+    const BurleyOptions world = world_cone(options, 2.0f, perspective_frustum());
+    EXPECT_EQ(world.max_radius, 0.03f);
+    for (double z : {0.0, 0.3, 1.0}) {
+        const double slope = double(world.bias_slope) + double(world.bias_slope_per_depth) * z;
+        EXPECT_NEAR(slope * (kFar - kNear) / map_width_at(z), 2.0, 2e-6) << z;
+    }
+    const BurleyOptions ortho = world_cone(options, 2.0f, LightFrustum{10, 10, 1, 21});
+    EXPECT_NEAR(ortho.bias_slope, 2.0 * 10 / 20, 1e-6);
+    EXPECT_EQ(ortho.bias_slope_per_depth, 0.0f);
+}
 
 // ---- the operations' checks ----------------------------------------------------
 
@@ -443,6 +523,7 @@ TEST(SoftPcfOperations, BadOptionsAndInputsNameTheParameter)
     expect_parameter(with_pcss([](PcssOptions& o) { o.bias.constant = NAN; }), "depth-bias");
     expect_parameter(with_burley([](BurleyOptions& o) { o.min_radius = 0.02f, o.max_radius = 0.01f; }), "min-radius");
     expect_parameter(with_burley([](BurleyOptions& o) { o.bias_slope = -1; }), "bias-slope");
+    expect_parameter(with_burley([](BurleyOptions& o) { o.bias_slope_per_depth = -3; }), "bias-slope-per-depth");
     expect_parameter(with_burley([](BurleyOptions& o) { o.falloff = -1; }), "falloff");
     expect_parameter(with_burley([](BurleyOptions& o) { o.blocker_samples = 0; }), "blocker-samples");
     Image bad = map;
@@ -452,6 +533,12 @@ TEST(SoftPcfOperations, BadOptionsAndInputsNameTheParameter)
     Image bad_rx = rx;
     bad_rx.at(2, 1, 1) = INFINITY;
     expect_parameter([&] { burley(ctx, map, bad_rx, {}); }, "receivers");
+    const LightFrustum light{1, 2, 0.5f, 10};
+    expect_parameter([&] { world_cone({}, -1, light); }, "bias-slope");
+    expect_parameter([&] { world_cone({}, 2, LightFrustum{1, 2, 10, 10}); }, "light");
+    expect_parameter([&] { world_cone({}, 2, LightFrustum{0, 2, 0.5f, 10}); }, "light");
+    expect_parameter([&] { world_cone({}, 2, LightFrustum{1, NAN, 0.5f, 10}); }, "light");
+    expect_parameter([&] { world_cone({}, 1000, LightFrustum{1, 100, 0.5f, 1}); }, "bias-slope");
 }
 
 }  // namespace

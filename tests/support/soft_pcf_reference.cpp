@@ -108,11 +108,12 @@ SoftLookup pcss_lookup(const Image& map, const RefReceiver& r, const RefBias& bi
 SoftLookup burley_lookup(const Image& map, const RefReceiver& r, const RefBias& bias, const BurleySettings& s)
 {
     SoftLookup out;
+    const double slope = s.bias_slope + s.bias_slope_per_depth * std::clamp(r.z, 0.0, 1.0);
     // sampleDepth: taps concentrated at the centre (radius y), on the cone,
     // weighted 1 - 0.9 r / R.
     double weighted = 0, total = 0;
     for (const UnitDiscTap& t : hammersley_disc(s.blocker_samples, false)) {
-        const TapTest tap = test_tap(map, r, bias, t, s.max_radius, s.bias_slope * t.radius * s.max_radius, out);
+        const TapTest tap = test_tap(map, r, bias, t, s.max_radius, slope * t.radius * s.max_radius, out);
         if (tap.depth < tap.compare) {
             const double weight = 1 - 0.9 * t.radius;
             weighted += weight * tap.depth, total += weight;
@@ -123,7 +124,7 @@ SoftLookup burley_lookup(const Image& map, const RefReceiver& r, const RefBias& 
     out.blocker_depth = weighted / total;
     out.filter_radius = s.min_radius + (s.max_radius - s.min_radius) * (1 - out.blocker_depth / r.z);
     const double occlusion =
-        1 - disc_visibility(map, r, bias, s.filter_samples, out.filter_radius, s.bias_slope, out);
+        1 - disc_visibility(map, r, bias, s.filter_samples, out.filter_radius, slope, out);
     const double opacity = s.falloff > 0 ? std::clamp(1 - (r.z - out.blocker_depth) / s.falloff, 0.0, 1.0) : 1.0;
     out.visibility = 1 - occlusion * opacity;
     return out;

@@ -35,10 +35,13 @@ struct PcssSettings {
 
 struct BurleySettings {
     double min_radius = 0.0005, max_radius = 0.01;  // texture units
-    double bias_slope = 2;  // a tap r texture units out is compared at z - beta - bias_slope r
-    double falloff = 0;                             // opacity 1 - (z - z_b) / falloff, clamped; 0 = off
+    // A tap r texture units out is compared at z - beta - slope r, with
+    // slope = bias_slope + bias_slope_per_depth clamp(z, 0, 1).
+    double bias_slope = 2;
+    double falloff = 0;  // opacity 1 - (z - z_b) / falloff, clamped; 0 = off
     int blocker_samples = 16;
     int filter_samples = 16;
+    double bias_slope_per_depth = 0;  // last: the tests' positional settings leave it 0
 };
 
 // One receiver's steps: whether a blocker was found, the blocker depth, the

@@ -48,6 +48,7 @@ struct MethodSettings {
     int blocker_samples = PcssOptions{}.blocker_samples, filter_samples = PcssOptions{}.filter_samples;
     float min_radius = BurleyOptions{}.min_radius, max_radius = BurleyOptions{}.max_radius;
     float bias_slope = BurleyOptions{}.bias_slope, falloff = BurleyOptions{}.falloff;
+    float bias_slope_per_depth = BurleyOptions{}.bias_slope_per_depth;
     // The percentage-closer family (penumbra/pcf.h); depth_bias unset: kPcfDefaultDepthBias.
     BiasMode bias_mode = DepthBias{}.mode;
     float bias_min = DepthBias{}.min, bias_max = DepthBias{}.max, slope_scale = DepthBias{}.slope_scale;

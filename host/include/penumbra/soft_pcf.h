@@ -31,6 +31,10 @@ inline constexpr ParameterRange kPcssLightSizeRange{"light-size", "light-size", 
 inline constexpr ParameterRange kMinRadiusRange{"min-radius", "min-radius", 0, 0.5, false, false};
 inline constexpr ParameterRange kMaxRadiusRange{"max-radius", "max-radius", 0, 0.5, false, false};
 inline constexpr ParameterRange kBiasSlopeRange{"bias-slope", "bias-slope", 0, 1000, false, false};
+inline constexpr ParameterRange kSlopePerDepthRange{"bias-slope-per-depth", "bias-slope-per-depth", -1000, 1000, false, false};
+// The slope at z = 1, bias_slope + bias_slope_per_depth, has bias_slope's range:
+// the slope is affine in z, so it stays in [0, 1000] over the whole depth range.
+inline constexpr ParameterRange kSlopeAtFarRange{"bias-slope-per-depth", "cone slope at z = 1 (bias-slope + bias-slope-per-depth)", 0, 1000, false, false};
 inline constexpr ParameterRange kFalloffRange{"falloff", "falloff", 0, kNoUpperBound, false, true};
 
 struct PcssOptions {
@@ -52,13 +56,38 @@ inline constexpr PcssPreset kPcssPresets[] = {{"hdrp", 16, 24}, {"godot-ultra", 
 struct BurleyOptions {
     float min_radius = 0.0005f;  // texture units: the filter radius at contact
     float max_radius = 0.01f;    // the depth pass's radius R, and the widest filter
-    float bias_slope = 2.0f;     // depth units per texture unit (the paper's 2.0)
+    float bias_slope = 2.0f;     // depth units per texture unit at z = 0 (the paper's 2.0)
+    // Added to the slope per unit of receiver depth z (z clamped into [0, 1]):
+    // 0 keeps the cone in depth per texture unit; world_cone() sets both
+    // terms from a slope in world units and the light's frustum.
+    float bias_slope_per_depth = 0.0f;
     float falloff = 0.0f;        // opacity 1 - (z - z_b) / falloff, clamped to [0, 1]; 0 = off
     int blocker_samples = 16;
     int filter_samples = 24;
     // The family's bias at the cone's tip (Burley's base bias: 0 or near it).
     DepthBias bias{BiasMode::Constant, 0.0f};
 };
+
+// The light's frustum as the cone needs it: the world width the whole map
+// (one texture unit) covers at the near and at the far plane -- 2 d tan(fov/2)
+// at distance d for a perspective light, the extent for an orthographic one --
+// and the planes' distances (linear depth z = (d - near) / (far - near)).
+struct LightFrustum {
+    float width_at_near = 0, width_at_far = 0;
+    float near = 0, far = 0;
+};
+
+// Burley's cone with its slope in world units: a tap at world distance x from
+// the receiver is compared world_slope * x nearer the light (the paper's
+// shadow space, where 2.0 clears any surface tilted less than about 63 degrees
+// from facing the light). One texture unit at depth z is w(z) = width_at_near
+// + (width_at_far - width_at_near) z wide, so in depth per texture unit the
+// slope is world_slope w(z) / (far - near): affine in z, returned as
+// bias_slope (at z = 0) and bias_slope_per_depth; the rest of `options` is
+// kept. Error (InvalidArgument) for a slope outside [0, 1000], a frustum with
+// near < 0, far <= near or a width not finite and > 0, or a resulting slope
+// outside the cone's range.
+BurleyOptions world_cone(BurleyOptions options, float world_slope, const LightFrustum& light);
 
 // Both take the family's bias modes: with slope or receiver-plane the
 // receivers' derivatives come from pcf_receivers() (penumbra/pcf.h).

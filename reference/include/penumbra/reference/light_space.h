@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "penumbra/reference/scene.h"
+#include "penumbra/soft_pcf.h"
 
 namespace penumbra::reference {
 
@@ -80,6 +81,10 @@ double light_size(const Scene& scene);
 // blocker-search window a receiver can need, the cone to the light cut at the
 // near plane, for a receiver far behind it: (L / (2 tan(fov/2))) (1/near - 1/d_r).
 double light_width_at_near_plane(const Scene& scene);
+
+// The light's frustum as Burley's world cone needs it (penumbra::world_cone):
+// the map's world width at the near and far planes, and the planes.
+LightFrustum light_frustum(const Scene& scene);
 
 // The scene with its light (and the light camera on it) moved within the
 // light's plane by (du, dv) texels of a map_width x map_height map, measured
