@@ -4,9 +4,11 @@
 usage: speed_accuracy_chart.py results.csv chart.png
 
 One panel per scene: x = milliseconds per megapixel of receivers (log),
-y = RMSE against the ray-traced ground truth; one colour per method, a dot
-per setting, and each method's Pareto front (the settings no other setting of
-the same method beats on both time and error) joined by a line.
+y = RMSE against the ray-traced ground truth; a marker per family (moments,
+distance fields, percentage-closer), a colour per method within its family,
+a point per setting, and each method's Pareto front (the settings no other
+setting of the same method beats on both time and error) joined by a line.
+The legend takes an empty panel where there is one.
 Needs matplotlib (Debian's python3-matplotlib, for /usr/bin/python3).
 """
 import csv
@@ -29,15 +31,35 @@ def pareto_front(points):
     return front
 
 
+# A method's family by its name: ten colours cannot tell seventeen methods
+# apart, a colour within the family and a marker per family can.
+FAMILIES = (("sdf", "s"), ("pcf", "^"), ("pcss", "^"), ("burley", "^"), ("", "o"))
+
+
+def family_marker(method):
+    return next(marker for prefix, marker in FAMILIES if method.startswith(prefix))
+
+
+def styles(methods):
+    """(colour, marker) per method, the colour counted within its family."""
+    counts, result = defaultdict(int), {}
+    for m in methods:
+        marker = family_marker(m)
+        result[m] = (plt.cm.tab10(counts[marker] % 10), marker)
+        counts[marker] += 1
+    return result
+
+
 def main(csv_path, png_path):
     rows = list(csv.DictReader(open(csv_path, newline="")))
     scenes = sorted({r["scene"] for r in rows}, key=[r["scene"] for r in rows].index)
     methods = sorted({r["method"] for r in rows}, key=[r["method"] for r in rows].index)
-    colours = {m: plt.cm.tab10(i % 10) for i, m in enumerate(methods)}
+    style = styles(methods)
     columns = min(3, len(scenes))
     lines = (len(scenes) + columns - 1) // columns
     fig, axes = plt.subplots(lines, columns, figsize=(5.2 * columns, 4.2 * lines), squeeze=False)
-    for ax in axes.flat[len(scenes):]:
+    spare = list(axes.flat[len(scenes):])
+    for ax in spare:
         ax.set_visible(False)
     for ax, scene in zip(axes.flat, scenes):
         points = defaultdict(list)
@@ -46,19 +68,26 @@ def main(csv_path, png_path):
                 points[r["method"]].append((float(r["ms_per_mpix"]), float(r["rmse"])))
         for method, pts in points.items():
             xs, ys = zip(*pts)
-            ax.scatter(xs, ys, color=colours[method], s=18, label=method)
+            colour, marker = style[method]
+            ax.scatter(xs, ys, color=colour, marker=marker, s=22, label=method)
             front = pareto_front(pts)
-            ax.plot([p[0] for p in front], [p[1] for p in front], color=colours[method], lw=1.2)
+            ax.plot([p[0] for p in front], [p[1] for p in front], color=colour, lw=1.2)
         ax.set_xscale("log")
         ax.set_title(scene)
         ax.set_xlabel("ms per megapixel of receivers")
         ax.set_ylabel("RMSE vs ground truth")
         ax.grid(True, which="both", alpha=0.3)
-    handles = [plt.Line2D([], [], color=colours[m], marker="o", lw=1.2, label=m) for m in methods]
-    fig.legend(handles=handles, loc="lower center", ncol=min(len(methods), 6), frameon=False)
+    handles = [plt.Line2D([], [], color=style[m][0], marker=style[m][1], lw=1.2, label=m) for m in methods]
     backend = rows[0]["backend"] if rows else ""
     fig.suptitle(f"penumbra: time against error ({backend})")
-    fig.tight_layout(rect=(0, 0.06, 1, 0.97))
+    if spare:
+        fig.tight_layout(rect=(0, 0, 1, 0.97))
+        box = spare[0].get_position()
+        fig.legend(handles=handles, loc="center", bbox_to_anchor=(box.x0 + box.width / 2, box.y0 + box.height / 2),
+                   ncol=2, frameon=False)
+    else:
+        fig.legend(handles=handles, loc="lower center", ncol=min(len(methods), 6), frameon=False)
+        fig.tight_layout(rect=(0, 0.06, 1, 0.97))
     fig.savefig(png_path, dpi=110)
 
 
