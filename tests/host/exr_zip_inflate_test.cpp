@@ -69,7 +69,7 @@ TEST(ExrZipInflate, ReadsWhatOpenExrWrote)
 {
     for (const Imf::Compression c : {Imf::ZIP_COMPRESSION, Imf::ZIPS_COMPRESSION})
         for (const bool random_bits : {false, true})
-            for (const auto [width, height] : {std::pair{1, 1}, {7, 3}, {17, 40}, {333, 35}}) {
+            for (const auto& [width, height] : {std::pair{1, 1}, {7, 3}, {17, 40}, {333, 35}}) {
                 const std::vector<float> pixels = test_pixels(width, height, random_bits);
                 const fs::path file = scratch_path("plane.exr");
                 write_plane(file, c, width, height, pixels);
