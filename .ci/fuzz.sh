@@ -2,13 +2,13 @@
 # CI's fuzz runs (docs/ci.md): the libFuzzer targets of tests/fuzz built with
 # clang (-fsanitize=fuzzer,address,undefined) into ./build-fuzz, a seed corpus
 # made by tests/fuzz/make_corpus.sh, then each target for FUZZ_SECONDS
-# (default 30). A crash, a sanitizer report, a leak, an input slower than 10 s
+# (default 20). A crash, a sanitizer report, a leak, an input slower than 10 s
 # or one allocating over 1 GiB fails the run; the input is kept in
 # build-fuzz/artifacts for the report.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build-fuzz
-seconds=${FUZZ_SECONDS:-30}
+seconds=${FUZZ_SECONDS:-20}
 # The readers need no OpenCL, no SIMD kernels (scalar only: the three SIMD
 # kernel objects were most of this build), no tests or benchmarks.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \

@@ -101,6 +101,12 @@ foreach(family IN LISTS PENUMBRA_CL_FAMILIES)
     VERBATIM)
   list(APPEND PENUMBRA_EMBEDDED_KERNELS ${_output})
 endforeach()
+# The embedded programs are made by a target of their own: a custom command
+# of `penumbra` itself would wait (order-only) for every target penumbra
+# depends on, the per-ISA kernel objects included, and every source of
+# penumbra waits for the generated ones, so the build's largest units (the
+# kernel objects, minutes each under ASan) would compile alone.
+add_custom_target(penumbra_opencl_programs DEPENDS ${PENUMBRA_EMBEDDED_KERNELS})
 
 # CPU side: the same source compiled once per instruction set, each into its
 # own namespace with its own flags; simd/isa.cpp picks one at run time. The
