@@ -339,6 +339,7 @@ int demo_command(const std::vector<std::string>& argv)
     for (const std::string& name : o.scenes) {
         const reference::Scene scene = reference::builtin_scene(name);
         const std::vector<DemoFrame> frames = render_frames(scene, o, progress);
+        progress.milestone(name + ": ground truth, " + std::to_string(o.frames) + " frames");
         const fs::path dir = o.out / name;
         create_output_directory(dir, "--out");
         write_png((dir / "truth.png").string(), frames[0].truth);
@@ -352,8 +353,10 @@ int demo_command(const std::vector<std::string>& argv)
                 if (int(s) == m.preview_setting) write_previews(dir, m.name, estimate, frames[0]);
                 progress.step(name + ": " + m.name + " " + m.settings[s].label);
             }
+            progress.milestone(name + ": " + m.name);
         }
     }
+    progress.finish();  // the bar's line ends before the chart's and the table's output
     write_csv(o.out / "results.csv", rows, to_string(ctx.backend()));
     draw_chart(o.out);
     print_summary(rows);

@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "penumbra/exr_io.h"
 #include "penumbra/reference/scene.h"
@@ -81,6 +83,39 @@ TEST(Demo, QuickRunCoversEveryMethodOnEverySceneWithoutNaN)
     }
     EXPECT_TRUE(all_methods.count("vsm") && all_methods.count("vssm"));
     EXPECT_TRUE(fs::exists(out / "chart.png"));
+    fs::remove_all(out);
+}
+
+// With stdout in a file (a CI log), the run reports itself line by line: one
+// line per scene's truth and per method, in order, counting up to the whole
+// work, each with the time so far and an estimate of the rest, all before the
+// results table.
+TEST(Demo, ALogGetsOneProgressLinePerSceneAndMethod)
+{
+    const fs::path out = scratch("demo_log");
+    ASSERT_EQ(run("demo --quick --scene contact --method vsm,pcf --out " + out.string(), out / "log.txt"), 0)
+        << std::ifstream(out / "log.txt").rdbuf();
+    std::ifstream log(out / "log.txt");
+    const std::regex progress_line(R"(\[(\d+)/(\d+)\] \d+\.\d s, about \d+ s left: (.*))");
+    std::vector<std::string> units;
+    int last_done = 0, total = 0;
+    bool table_seen = false;
+    for (std::string line; std::getline(log, line);) {
+        std::smatch m;
+        if (std::regex_match(line, m, progress_line)) {
+            EXPECT_FALSE(table_seen) << "progress after the table: " << line;
+            EXPECT_GT(std::stoi(m[1]), last_done) << line;
+            last_done = std::stoi(m[1]);
+            total = std::stoi(m[2]);
+            units.push_back(m[3]);
+        } else if (line.rfind("scene ", 0) == 0) {
+            table_seen = true;
+        }
+    }
+    EXPECT_TRUE(table_seen);
+    EXPECT_EQ(last_done, total);
+    const std::vector<std::string> expected = {"contact: ground truth, 2 frames", "contact: vsm", "contact: pcf"};
+    EXPECT_EQ(units, expected);
     fs::remove_all(out);
 }
 
