@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Markdown table of `penumbra demo`'s CSV: per scene, each method's setting
-with the lowest RMSE, with its leak, over-darkening, flicker and time.
+with the lowest RMSE, with its leak, over-darkening, flicker and its time
+per timed frame (median, and the map's and the receivers' shares).
 
 usage: demo_table.py results.csv [method,method,...]
 
@@ -23,11 +24,14 @@ def best_rows(rows, methods):
 def main(csv_path, wanted=None):
     rows = list(csv.DictReader(open(csv_path, newline="")))
     methods = wanted or sorted({r["method"] for r in rows}, key=[r["method"] for r in rows].index)
-    print("| scene | method | best setting | RMSE | p99 | leak | over-darkening | flicker | ms/Mpx |")
+    frame = rows[0]["frame"] if rows else ""
+    print(f"| scene | method | best setting | RMSE | p99 | leak | over-darkening | flicker | ms per {frame} frame "
+          "(map + receivers) |")
     print("|---|---|---|---|---|---|---|---|---|")
     for scene, r in best_rows(rows, methods):
         values = " | ".join(f"{float(r[k]):.4f}" for k in ("rmse", "p99", "leak", "overdark", "flicker"))
-        print(f"| {scene} | {r['method']} | {r['settings']} | {values} | {float(r['ms_per_mpix']):.0f} |")
+        times = f"{float(r['frame_ms']):.3g} ({float(r['map_ms']):.3g} + {float(r['receiver_ms']):.3g})"
+        print(f"| {scene} | {r['method']} | {r['settings']} | {values} | {times} |")
 
 
 if __name__ == "__main__":

@@ -3,11 +3,14 @@
 
 usage: speed_accuracy_chart.py results.csv chart.png
 
-One panel per scene: x = milliseconds per megapixel of receivers (log),
-y = RMSE against the ray-traced ground truth; a marker per family (moments,
-distance fields, percentage-closer), a colour per method within its family,
-a point per setting, and each method's Pareto front (the settings no other
-setting of the same method beats on both time and error) joined by a line.
+One panel per scene: x = milliseconds per timed frame (the map's and the
+receivers' work, median of the repetitions; the bar spans their min-max),
+log; y = RMSE against the ray-traced ground truth; a marker per family
+(moments, distance fields, percentage-closer), a colour per method within its
+family, a point per setting labelled with it, and each method's Pareto front
+(the settings no other setting of the same method beats on both time and
+error) joined by a line. The dashed line is the truth's own noise (its RMSE
+against a truth with 4x the rays): differences below it are not resolved.
 The legend takes an empty panel where there is one.
 Needs matplotlib (Debian's python3-matplotlib, for /usr/bin/python3).
 """
@@ -19,6 +22,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
 
 
 def pareto_front(points):
@@ -50,6 +54,35 @@ def styles(methods):
     return result
 
 
+def draw_panel(ax, rows, style):
+    """One scene: the points with their spread and labels, the fronts."""
+    points = defaultdict(list)
+    for r in rows:
+        points[r["method"]].append(r)
+    for method, method_rows in points.items():
+        colour, marker = style[method]
+        xs = [float(r["frame_ms"]) for r in method_rows]
+        ys = [float(r["rmse"]) for r in method_rows]
+        spread = [[x - float(r["frame_ms_min"]) for x, r in zip(xs, method_rows)],
+                  [float(r["frame_ms_max"]) - x for x, r in zip(xs, method_rows)]]
+        ax.errorbar(xs, ys, xerr=spread, fmt="none", ecolor=colour, elinewidth=0.7, alpha=0.6)
+        ax.scatter(xs, ys, color=colour, marker=marker, s=22, label=method, zorder=3)
+        for x, y, r in zip(xs, ys, method_rows):
+            ax.annotate(r["settings"], (x, y), xytext=(3, 2), textcoords="offset points", fontsize=5.5,
+                        color=colour, alpha=0.9)
+        front = pareto_front(list(zip(xs, ys)))
+        ax.plot([p[0] for p in front], [p[1] for p in front], color=colour, lw=1.2)
+    if rows:
+        ax.axhline(float(rows[0]["truth_noise"]), color="grey", ls="--", lw=0.8)
+    ax.set_xscale("log")
+    # Ticks at 1, 2, 5 per decade, labelled: a panel spanning less than a
+    # decade otherwise gets a single labelled tick.
+    ax.xaxis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.grid(True, which="both", alpha=0.3)
+
+
 def main(csv_path, png_path):
     rows = list(csv.DictReader(open(csv_path, newline="")))
     scenes = sorted({r["scene"] for r in rows}, key=[r["scene"] for r in rows].index)
@@ -61,22 +94,12 @@ def main(csv_path, png_path):
     spare = list(axes.flat[len(scenes):])
     for ax in spare:
         ax.set_visible(False)
+    frame = rows[0]["frame"] if rows else ""
     for ax, scene in zip(axes.flat, scenes):
-        points = defaultdict(list)
-        for r in rows:
-            if r["scene"] == scene:
-                points[r["method"]].append((float(r["ms_per_mpix"]), float(r["rmse"])))
-        for method, pts in points.items():
-            xs, ys = zip(*pts)
-            colour, marker = style[method]
-            ax.scatter(xs, ys, color=colour, marker=marker, s=22, label=method)
-            front = pareto_front(pts)
-            ax.plot([p[0] for p in front], [p[1] for p in front], color=colour, lw=1.2)
-        ax.set_xscale("log")
+        draw_panel(ax, [r for r in rows if r["scene"] == scene], style)
         ax.set_title(scene)
-        ax.set_xlabel("ms per megapixel of receivers")
+        ax.set_xlabel(f"ms per {frame} frame (map + receivers)")
         ax.set_ylabel("RMSE vs ground truth")
-        ax.grid(True, which="both", alpha=0.3)
     handles = [plt.Line2D([], [], color=style[m][0], marker=style[m][1], lw=1.2, label=m) for m in methods]
     backend = rows[0]["backend"] if rows else ""
     fig.suptitle(f"penumbra: time against error ({backend})")

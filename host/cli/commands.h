@@ -20,7 +20,8 @@ int demo_command(const std::vector<std::string>& args);
 struct ViewSize {
     int width = 0, height = 0;
 };
-ViewSize parse_view_size(const std::string& text);  // "WxH"
+// "WxH", each size in [1, largest]; a UsageError names `option`.
+ViewSize parse_view_size(const std::string& text, const std::string& option = "--view-size", int largest = 16384);
 int strata_for_samples(int samples);                // n such that n^2 ~ samples
 // The receivers as one image with the channels of kReceiverChannels.
 extern const std::vector<std::string> kReceiverChannels;

@@ -3,21 +3,23 @@
 //
 // Per scene: K frames with the light moved by sub-texel steps (frame 0 is the
 // scene itself); the truth of each frame is cached on disk, keyed by the
-// scene and the sizes. Per method and setting: time (median over repeats on
-// frame 0, the table build included, in milliseconds per megapixel of
-// receivers), RMSE, 99th-percentile error, light leaking and over-darkening
-// on frame 0, flicker over the K frames, all over the valid receivers that
-// face the light (scored_mask). Outputs in --out: results.csv,
-// chart.png (time against error, each method's Pareto front), and per scene
-// <scene>/truth.png and <scene>/<method>.{exr,png} + <method>_error.png for
-// the method's preview setting.
+// scene and the sizes, and frame 0 also gets a truth with 4x the rays, whose
+// difference from it is the truth's own noise. Per method and setting, scored
+// on the view's receivers (scored_mask: valid ones facing the light): RMSE,
+// 99th-percentile error, light leaking and over-darkening on frame 0, flicker
+// over the K frames. Timed on a frame of its own size (1920x1080 receivers
+// by default, demo_timing.h): the per-map and per-receiver steps, medians of
+// interleaved repetitions with their spread. Outputs in --out: results.csv,
+// chart.png (time against error, each method's Pareto front), index.html
+// (demo_report.h), and per scene <scene>/truth.png and
+// <scene>/<method>.{exr,png} + <method>_error.png for the method's preview
+// setting.
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -27,7 +29,12 @@
 
 #include "args.h"
 #include "commands.h"
+#include "demo_images.h"
 #include "demo_methods.h"
+#include "demo_report.h"
+#include "demo_results.h"
+#include "demo_summary.h"
+#include "demo_timing.h"
 #include "output_directory.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
@@ -52,8 +59,13 @@ struct DemoOptions {
     std::vector<std::string> scenes, methods;
     int map_size = 0;  // 0: the scene's own, capped (see below)
     ViewSize view{320, 240};
-    int strata = 24, frames = 3, repeats = 3;
+    ViewSize frame{1920, 1080};  // the timed receivers
+    int strata = 24, frames = 3, repetitions = 5;
 };
+
+// The timed frame's largest side: 4096^2 receivers are 0.8 GB of buffers.
+constexpr int kLargestFrame = 4096;
+constexpr int kFewestRepetitions = 5, kMostRepetitions = 100;
 
 std::vector<std::string> split_list(const std::string& text)
 {
@@ -66,15 +78,17 @@ std::vector<std::string> split_list(const std::string& text)
 
 DemoOptions parse_options(const std::vector<std::string>& argv)
 {
-    const Args args(argv, {"--out", "--backend", "--scene", "--method", "--map-size", "--view-size", "--samples", "--frames"},
+    const Args args(argv,
+                    {"--out", "--backend", "--scene", "--method", "--map-size", "--view-size", "--samples", "--frames",
+                     "--frame", "--repetitions"},
                     {"--quick"});
     DemoOptions o;
     o.quick = args.flag("--quick");
     if (o.quick) {
         o.view = {128, 96};
+        o.frame = {240, 135};
         o.strata = 10;
         o.frames = 2;
-        o.repeats = 2;
     }
     o.out = args.text("--out", o.out.string());
     try {
@@ -91,6 +105,10 @@ DemoOptions parse_options(const std::vector<std::string>& argv)
     if (auto samples = args.get("--samples")) o.strata = strata_for_samples(args.integer("--samples", 0));
     o.frames = args.integer("--frames", o.frames);
     if (o.frames < 2 || o.frames > 16) throw UsageError{"option --frames: must be in [2, 16] (flicker needs two)"};
+    if (auto frame = args.get("--frame")) o.frame = parse_view_size(*frame, "--frame", kLargestFrame);
+    o.repetitions = args.integer("--repetitions", o.repetitions);
+    if (o.repetitions < kFewestRepetitions || o.repetitions > kMostRepetitions)
+        throw UsageError{"option --repetitions: must be in [5, 100] (a median of fewer follows the machine's noise)"};
     return o;
 }
 
@@ -130,6 +148,13 @@ Image cached_truth(const reference::Scene& scene, const reference::Receivers& rx
     return truth;
 }
 
+// A scene's frames, the receivers its settings are timed on, and the truth's noise.
+struct SceneFrames {
+    std::vector<DemoFrame> frames;
+    reference::Receivers timed;
+    double truth_noise = 0;
+};
+
 std::vector<DemoFrame> render_frames(const reference::Scene& scene, const DemoOptions& o, Progress& progress)
 {
     const int map = map_size_for(scene, o);
@@ -142,26 +167,6 @@ std::vector<DemoFrame> render_frames(const reference::Scene& scene, const DemoOp
         progress.step(scene.name + ": ground truth");
     }
     return frames;
-}
-
-double median_ms(std::vector<double> times)
-{
-    std::sort(times.begin(), times.end());
-    return times[times.size() / 2];
-}
-
-struct Row {
-    std::string scene, method, setting;
-    double ms_per_mpix, rmse, p99, leak, overdark, flicker;
-};
-
-Image signed_error(const Image& estimate, const Image& truth, const Image& mask)
-{
-    Image e(estimate.width(), estimate.height(), 1);
-    for (int y = 0; y < e.height(); ++y)
-        for (int x = 0; x < e.width(); ++x)
-            e.at(0, x, y) = mask.at(0, x, y) > 0.5f ? estimate.at(0, x, y) - truth.at(0, x, y) : 0.0f;
-    return e;
 }
 
 // The receivers the metrics count: valid ones that face the light's centre.
@@ -185,58 +190,84 @@ Image scored_mask(const DemoFrame& f)
     return mask;
 }
 
-Row measure(Context& ctx, const DemoSetting& setting, const std::vector<DemoFrame>& frames, int repeats,
-            Image& first_estimate)
+// Frame 0's truth against one with twice the strata per axis (4x the rays):
+// the noise of the truth itself, below which two RMSEs cannot be told apart.
+double truth_noise(const DemoFrame& f0, const DemoOptions& o)
+{
+    const Image finer = cached_truth(f0.scene, f0.receivers, 2 * o.strata, o.out / "cache");
+    const Image scored = scored_mask(f0);
+    return reference::rmse(f0.truth, finer, &scored);
+}
+
+SceneFrames render_scene_frames(const reference::Scene& scene, const DemoOptions& o, Progress& progress)
+{
+    SceneFrames s{render_frames(scene, o, progress), {}, 0.0};
+    s.truth_noise = truth_noise(s.frames[0], o);
+    s.timed = reference::render_receivers(s.frames[0].scene, o.frame.width, o.frame.height);
+    return s;
+}
+
+std::string format_ms(double ms)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", ms);
+    return text;
+}
+
+// The accuracy of one setting (its times come later, from time_settings).
+DemoRow measure(Context& ctx, const DemoSetting& setting, const std::vector<DemoFrame>& frames, Image& first_estimate)
 {
     const DemoFrame& f0 = frames[0];
-    std::vector<double> times;
-    for (int r = 0; r < repeats; ++r) {
-        const auto start = std::chrono::steady_clock::now();
-        first_estimate = setting.run(ctx, f0);
-        times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-    }
+    first_estimate = run_setting(ctx, setting, f0);
     std::vector<Image> estimates{first_estimate}, truths{f0.truth};
     for (std::size_t k = 1; k < frames.size(); ++k) {
-        estimates.push_back(setting.run(ctx, frames[k]));
+        estimates.push_back(run_setting(ctx, setting, frames[k]));
         truths.push_back(frames[k].truth);
     }
     const Image scored = scored_mask(f0);
     const Image* mask = &scored;
-    const double mpix = double(f0.truth.width()) * f0.truth.height() / 1e6;
-    return {f0.scene.name,
-            "",
-            setting.label,
-            median_ms(times) / mpix,
-            reference::rmse(first_estimate, f0.truth, mask),
-            reference::p99_abs_error(first_estimate, f0.truth, mask),
-            reference::light_leaking(first_estimate, f0.truth, mask),
-            reference::over_darkening(first_estimate, f0.truth, mask),
-            reference::flicker(estimates, truths, mask)};
+    DemoRow row{f0.scene.name, "", setting.label, {}, 0, 0, 0, 0, 0, 0};
+    row.rmse = reference::rmse(first_estimate, f0.truth, mask);
+    row.p99 = reference::p99_abs_error(first_estimate, f0.truth, mask);
+    row.leak = reference::light_leaking(first_estimate, f0.truth, mask);
+    row.overdark = reference::over_darkening(first_estimate, f0.truth, mask);
+    row.flicker = reference::flicker(estimates, truths, mask);
+    return row;
 }
 
 void write_previews(const fs::path& dir, const std::string& method, const Image& estimate, const DemoFrame& f0)
 {
+    const Image scored = scored_mask(f0);
     write_exr((dir / (method + ".exr")).string(), estimate, {"Y"});
-    write_png((dir / (method + ".png")).string(), estimate);
-    write_png((dir / (method + "_error.png")).string(),
-              colormap_error(signed_error(estimate, f0.truth, scored_mask(f0)), 0.5f), PngTransfer::None);
+    write_visibility_png((dir / (method + ".png")).string(), estimate, f0.receivers.mask, scored);
+    write_error_png((dir / (method + "_error.png")).string(), estimate, f0.truth, f0.receivers.mask, scored);
 }
 
-void write_csv_rows(const fs::path& path, const std::vector<Row>& rows, const std::string& backend)
+std::string frame_text(ViewSize frame)
+{
+    return std::to_string(frame.width) + "x" + std::to_string(frame.height);
+}
+
+void write_csv_rows(const fs::path& path, const std::vector<DemoRow>& rows, const std::string& backend,
+                    const std::string& frame)
 {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out << "scene,method,settings,backend,ms_per_mpix,rmse,p99,leak,overdark,flicker\n";
-    for (const Row& r : rows)
-        out << r.scene << "," << r.method << ",\"" << r.setting << "\"," << backend << "," << r.ms_per_mpix << ","
-            << r.rmse << "," << r.p99 << "," << r.leak << "," << r.overdark << "," << r.flicker << "\n";
+    out << "scene,method,settings,backend,frame,map_ms,receiver_ms,frame_ms,frame_ms_min,frame_ms_max,repetitions,"
+           "rmse,p99,leak,overdark,flicker,truth_noise\n";
+    for (const DemoRow& r : rows)
+        out << r.scene << "," << r.method << ",\"" << r.setting << "\"," << backend << "," << frame << ","
+            << r.time.map_ms << "," << r.time.receiver_ms << "," << r.time.frame_ms << "," << r.time.frame_min_ms << ","
+            << r.time.frame_max_ms << "," << r.time.repetitions << "," << r.rmse << "," << r.p99 << "," << r.leak
+            << "," << r.overdark << "," << r.flicker << "," << r.truth_noise << "\n";
     out.flush();
     if (!out) throw Error(ErrorCategory::Io, "demo", "could not write " + path.string());
 }
 
-void write_csv(const fs::path& path, const std::vector<Row>& rows, const std::string& backend)
+void write_csv(const fs::path& path, const std::vector<DemoRow>& rows, const std::string& backend,
+               const std::string& frame)
 {
     detail::write_file_atomically(path.string(), "demo", [&](const std::string& temporary) {
-        write_csv_rows(temporary, rows, backend);
+        write_csv_rows(temporary, rows, backend, frame);
     });
 }
 
@@ -259,7 +290,7 @@ int run_program(const std::vector<std::string>& argv)
 // Draws the chart with matplotlib through /usr/bin/python3 (Debian's, which
 // has python3-matplotlib). A missing matplotlib is a warning, not a failure:
 // the CSV and images are the results; the chart is their picture.
-void draw_chart(const fs::path& out)
+bool draw_chart(const fs::path& out)
 {
     const fs::path script = out / "speed_accuracy_chart.py";
     detail::write_file_atomically(script.string(), "demo", [](const std::string& temporary) {
@@ -272,15 +303,33 @@ void draw_chart(const fs::path& out)
     if (status != 0)
         std::cerr << "penumbra demo: warning: the chart was not drawn (is python3-matplotlib installed?); "
                      "results.csv has the numbers\n";
+    return status == 0;
 }
 
-void print_summary(const std::vector<Row>& rows)
+void print_table(const std::vector<DemoRow>& rows, const std::string& frame)
 {
-    std::printf("%-8s %-12s %-11s %9s %7s %7s %7s %8s %7s\n", "scene", "method", "settings", "ms/Mpix", "RMSE", "p99",
-                "leak", "overdark", "flicker");
-    for (const Row& r : rows)
-        std::printf("%-8s %-12s %-11s %9.2f %7.4f %7.4f %7.4f %8.4f %7.4f\n", r.scene.c_str(), r.method.c_str(),
-                    r.setting.c_str(), r.ms_per_mpix, r.rmse, r.p99, r.leak, r.overdark, r.flicker);
+    std::printf("times in ms per %s frame: map (the table build), receivers, frame = both (median, min-max)\n",
+                frame.c_str());
+    std::printf("%-8s %-13s %-17s %8s %8s %8s %15s %7s %7s %7s %8s %7s\n", "scene", "method", "settings", "map",
+                "recv", "frame", "min-max", "RMSE", "p99", "leak", "overdark", "flicker");
+    for (const DemoRow& r : rows)
+        std::printf("%-8s %-13s %-17s %8.3g %8.3g %8.3g %7.3g-%-7.3g %7.4f %7.4f %7.4f %8.4f %7.4f\n", r.scene.c_str(),
+                    r.method.c_str(), r.setting.c_str(), r.time.map_ms, r.time.receiver_ms, r.time.frame_ms,
+                    r.time.frame_min_ms, r.time.frame_max_ms, r.rmse, r.p99, r.leak, r.overdark, r.flicker);
+}
+
+void print_summary(const std::vector<SceneSummary>& summaries, const std::string& frame)
+{
+    std::printf("\nsummary: the most accurate method within each budget per %s frame, and overall\n",
+                frame.c_str());
+    for (const SceneSummary& s : summaries) {
+        std::printf("%s (the truth's own noise: RMSE %.4f; closer than that is a tie)\n", s.scene.c_str(),
+                    s.truth_noise);
+        for (const DemoPick& pick : s.picks) {
+            const std::string budget = pick.budget_ms > 0 ? "<= " + format_ms(pick.budget_ms) + " ms" : "overall";
+            std::printf("  %-10s %s\n", budget.c_str(), describe_pick(pick).c_str());
+        }
+    }
 }
 
 bool wanted(const std::vector<std::string>& list, const std::string& name)
@@ -313,10 +362,15 @@ int demo_command(const std::vector<std::string>& argv)
     if (!argv.empty() && argv[0] == "--help") {
         std::cout << "usage: penumbra demo [--quick] [--out DIR] [--backend B] [--scene a,b] [--method a,b]\n"
                      "                     [--map-size N] [--view-size WxH] [--samples S] [--frames K]\n"
+                     "                     [--frame WxH] [--repetitions N]\n"
                      "  every method with a sweep of its settings on every built-in scene, against the\n"
-                     "  ray-traced ground truth: DIR/results.csv, DIR/chart.png, DIR/<scene>/*.png|exr\n"
-                     "  defaults: DIR=out/demo, 320x240 receivers, 576 rays each, 3 frames for flicker;\n"
-                     "  --quick: 128x96 receivers, 100 rays, 2 frames, 256^2 maps\n";
+                     "  ray-traced ground truth: DIR/index.html (the report), DIR/results.csv,\n"
+                     "  DIR/chart.png, DIR/<scene>/*.png|exr\n"
+                     "  scored on --view-size receivers (default 320x240, 576 rays each, 3 frames for\n"
+                     "  flicker); timed on --frame receivers (default 1920x1080): the map's and the\n"
+                     "  receivers' work apart, medians of --repetitions (default 5, at least 5)\n"
+                     "  interleaved runs after a warm-up\n"
+                     "  --quick: 128x96 receivers, 100 rays, 2 frames, 256^2 maps, a 240x135 frame\n";
         return 0;
     }
     const DemoOptions o = parse_options(argv);
@@ -330,37 +384,72 @@ int demo_command(const std::vector<std::string>& argv)
     int work = 0;
     for (const std::string& name : o.scenes) {
         const reference::Scene scene = reference::builtin_scene(name);
-        work += o.frames;
+        work += o.frames + 1;  // the truths, then the timing
         for (const DemoMethod& m : demo_methods(scene, map_size_for(scene, o)))
             if (wanted(o.methods, m.name)) work += int(m.settings.size());
     }
     Progress progress(work);
-    std::vector<Row> rows;
+    std::vector<DemoRow> rows;
+    std::vector<std::pair<std::string, double>> noise;
+    DemoReport report;
     for (const std::string& name : o.scenes) {
         const reference::Scene scene = reference::builtin_scene(name);
-        const std::vector<DemoFrame> frames = render_frames(scene, o, progress);
+        const SceneFrames scene_frames = render_scene_frames(scene, o, progress);
+        const std::vector<DemoFrame>& frames = scene_frames.frames;
+        noise.emplace_back(name, scene_frames.truth_noise);
         progress.milestone(name + ": ground truth, " + std::to_string(o.frames) + " frames");
         const fs::path dir = o.out / name;
         create_output_directory(dir, "--out");
-        write_png((dir / "truth.png").string(), frames[0].truth);
-        for (const DemoMethod& m : demo_methods(scene, map_size_for(scene, o))) {
-            if (!wanted(o.methods, m.name)) continue;
+        write_visibility_png((dir / "truth.png").string(), frames[0].truth, frames[0].receivers.mask,
+                             scored_mask(frames[0]));
+        std::vector<DemoMethod> methods;
+        for (DemoMethod& m : demo_methods(scene, map_size_for(scene, o)))
+            if (wanted(o.methods, m.name)) methods.push_back(std::move(m));
+        std::vector<const DemoSetting*> settings;
+        std::vector<DemoPicture> pictures;
+        const std::size_t first_row = rows.size();
+        for (const DemoMethod& m : methods) {
             for (std::size_t s = 0; s < m.settings.size(); ++s) {
                 Image estimate;
-                Row row = measure(ctx, m.settings[s], frames, o.repeats, estimate);
+                DemoRow row = measure(ctx, m.settings[s], frames, estimate);
                 row.method = m.name;
+                row.truth_noise = scene_frames.truth_noise;
                 rows.push_back(row);
-                if (int(s) == m.preview_setting) write_previews(dir, m.name, estimate, frames[0]);
+                settings.push_back(&m.settings[s]);
+                if (int(s) == m.preview_setting) {
+                    write_previews(dir, m.name, estimate, frames[0]);
+                    pictures.push_back({m.name, m.settings[s].label});
+                }
                 progress.step(name + ": " + m.name + " " + m.settings[s].label);
             }
             progress.milestone(name + ": " + m.name);
         }
+        const std::vector<FrameTimes> times = time_settings(ctx, settings, frames[0], scene_frames.timed, o.repetitions);
+        for (std::size_t i = 0; i < times.size(); ++i) rows[first_row + i].time = times[i];
+        progress.step(name + ": timing");
+        progress.milestone(name + ": timing, " + std::to_string(settings.size()) + " settings x " +
+                           std::to_string(o.repetitions) + " on " + frame_text(o.frame));
+        report.pictures.emplace_back(name, std::move(pictures));
     }
     progress.finish();  // the bar's line ends before the chart's and the table's output
-    write_csv(o.out / "results.csv", rows, to_string(ctx.backend()));
-    draw_chart(o.out);
-    print_summary(rows);
-    std::cout << "wrote " << (o.out / "results.csv").string() << " and " << (o.out / "chart.png").string() << "\n";
+    const std::string frame = frame_text(o.frame);
+    write_csv(o.out / "results.csv", rows, to_string(ctx.backend()), frame);
+    write_error_scale_png((o.out / "error_scale.png").string());
+    report.chart = draw_chart(o.out);
+    const std::vector<SceneSummary> summaries = summarize_scenes(rows, noise);
+    print_table(rows, frame);
+    print_summary(summaries, frame);
+    report.machine = "penumbra demo on " + ctx.description();
+    report.protocol = "Scored on " + frame_text(o.view) + " receivers against a ground truth of " +
+                      std::to_string(o.strata * o.strata) + " rays per receiver, " + std::to_string(o.frames) +
+                      " frames for flicker; timed on " + frame + " receivers, medians of " +
+                      std::to_string(o.repetitions) + " interleaved repetitions after a warm-up.";
+    report.rows = &rows;
+    report.summaries = &summaries;
+    report.frame = frame;
+    write_report(o.out, report);
+    std::cout << "wrote " << (o.out / "results.csv").string() << ", " << (o.out / "chart.png").string() << " and "
+              << (o.out / "index.html").string() << "\n";
     return 0;
 }
 

@@ -43,10 +43,17 @@ DemoMethod table_method(const char* name, const std::vector<SweepPoint>& sweep)
     const Method& method = find_method(name);
     DemoMethod m{.name = method.name, .settings = {}, .preview_setting = kMiddleSetting};
     for (const SweepPoint& point : sweep)
-        m.settings.push_back({.label = point.label,
-                              .run = [&method, s = point.settings](Context& ctx, const DemoFrame& f) {
-                                  return method.run(ctx, f.shadow_map, f.receivers.light_uvz, s);
-                              }});
+        m.settings.push_back(
+            {.label = point.label,
+             .prepare = [&method, s = point.settings](Context& ctx, const DemoFrame& f) -> DemoPrepared {
+                 return std::make_shared<const PreparedMap>(method.prepare(ctx, f.shadow_map, s));
+             },
+             .shade = [&method, s = point.settings](Context& ctx, const DemoFrame&, const reference::Receivers& rx,
+                                                    const DemoPrepared& prepared) {
+                 Image out(rx.light_uvz.width(), rx.light_uvz.height(), 1);
+                 method.shade(ctx, *std::static_pointer_cast<const PreparedMap>(prepared), rx.light_uvz, s, out);
+                 return out;
+             }});
     return m;
 }
 
@@ -189,10 +196,13 @@ DemoMethod sdf_method(const reference::Scene& scene, int map_size, SdfSource sou
     for (Variant v : {Variant{"classic", SdfEstimate::Classic, 1.0f}, Variant{"improved", SdfEstimate::Improved, 1.0f},
                       Variant{"classic k/2", SdfEstimate::Classic, 0.5f},
                       Variant{"classic 2k", SdfEstimate::Classic, 2.0f}}) {
-        m.settings.push_back({.label = v.label, .run = [grid, primitives, v](Context& ctx, const DemoFrame& f) {
+        // No per-map step: the grid is baked offline (and not timed).
+        m.settings.push_back({.label = v.label,
+                              .prepare = [](Context&, const DemoFrame&) { return DemoPrepared(); },
+                              .shade = [grid, primitives, v](Context& ctx, const DemoFrame& f,
+                                                             const reference::Receivers& r, const DemoPrepared&) {
                                   SdfOptions o = sdf_options_for(f.scene, v.estimate);
                                   o.k *= v.k_scale;
-                                  const reference::Receivers& r = f.receivers;
                                   return grid ? sdf_shadows(ctx, grid->get(), r.world_position, &r.normal, o)
                                               : sdf_shadows(ctx, *primitives, r.world_position, &r.normal, o);
                               }});
@@ -204,13 +214,13 @@ DemoMethod sdf_method(const reference::Scene& scene, int map_size, SdfSource sou
 // the view depth (relative differences suit perspective depth), applied to
 // the noisiest estimates: small VSM windows alias, and distance-field
 // shadows band. The blur's cost is in the time; the chart shows what it buys.
-Image blurred(Context& ctx, const DemoFrame& f, const Image& visibility)
+Image blurred(Context& ctx, const reference::Receivers& rx, const Image& visibility)
 {
     BilateralOptions o;
     o.relative = true;
     o.depth_sigma = 0.02f;
     o.separable = true;
-    return cross_bilateral(ctx, visibility, f.receivers.view_depth, o);
+    return cross_bilateral(ctx, visibility, rx.view_depth, o);
 }
 
 // `source` at the settings numbered `blurred_settings`, each followed by the blur.
@@ -219,14 +229,22 @@ DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vecto
     DemoMethod m{.name = name, .settings = {}, .preview_setting = kFirstSetting};
     for (int index : blurred_settings) {
         DemoSetting inner = source.settings[std::size_t(index)];
-        m.settings.push_back({.label = inner.label + " +blur", .run = [inner](Context& ctx, const DemoFrame& f) {
-                                  return blurred(ctx, f, inner.run(ctx, f));
+        m.settings.push_back({.label = inner.label + " +blur",
+                              .prepare = inner.prepare,
+                              .shade = [inner](Context& ctx, const DemoFrame& f, const reference::Receivers& rx,
+                                               const DemoPrepared& prepared) {
+                                  return blurred(ctx, rx, inner.shade(ctx, f, rx, prepared));
                               }});
     }
     return m;
 }
 
 }  // namespace
+
+Image run_setting(Context& context, const DemoSetting& setting, const DemoFrame& frame)
+{
+    return setting.shade(context, frame, frame.receivers, setting.prepare(context, frame));
+}
 
 std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size)
 {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,10 +22,22 @@ struct DemoFrame {
     Image truth;                       // channel Y
 };
 
+// What a setting's per-map step made for its per-receiver step (a method's
+// PreparedMap), or null for a setting with no per-map work.
+using DemoPrepared = std::shared_ptr<const void>;
+
+// A setting's two steps, which the demo times apart: the per-map work (the
+// table built from the shadow map, once per light per frame) and the
+// per-receiver work (the shade step, and any screen-space pass after it), on
+// whichever receivers it is given (the scored view or the timed frame).
 struct DemoSetting {
-    std::string label;                 // e.g. "r=3 exact"
-    std::function<Image(Context&, const DemoFrame&)> run;
+    std::string label;                 // e.g. "r=3"
+    std::function<DemoPrepared(Context&, const DemoFrame&)> prepare;
+    std::function<Image(Context&, const DemoFrame&, const reference::Receivers&, const DemoPrepared&)> shade;
 };
+
+// Both steps on the frame's own receivers.
+Image run_setting(Context& context, const DemoSetting& setting, const DemoFrame& frame);
 
 struct DemoMethod {
     std::string name;                  // e.g. "vsm"

@@ -36,14 +36,15 @@ Image pack_receivers(const reference::Receivers& rx)
     return packed;
 }
 
-ViewSize parse_view_size(const std::string& text)
+ViewSize parse_view_size(const std::string& text, const std::string& option, int largest)
 {
     ViewSize size{};
     char x = 0;
     std::istringstream in(text);
     if (!(in >> size.width >> x >> size.height) || x != 'x' || !in.eof() || size.width < 1 || size.height < 1 ||
-        size.width > 16384 || size.height > 16384)
-        throw UsageError{"option --view-size: '" + text + "' is not WxH with sizes in [1, 16384]"};
+        size.width > largest || size.height > largest)
+        throw UsageError{"option " + option + ": '" + text + "' is not WxH with sizes in [1, " +
+                         std::to_string(largest) + "]"};
     return size;
 }
 

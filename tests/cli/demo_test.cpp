@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -52,26 +53,76 @@ std::vector<std::string> split_csv_line(const std::string& line)
     return cells;
 }
 
+std::string file_text(const fs::path& path)
+{
+    std::stringstream text;
+    text << std::ifstream(path).rdbuf();
+    return text.str();
+}
+
+// index.html: every picture it names is a file beside it (no address of
+// another host, nothing absolute), and it shows the chart, the summary, the
+// results and, per scene, the truth and each method's picture and error
+// picture with a caption naming the method.
+void expect_report_names_only_existing_pictures(const fs::path& out, const std::set<std::string>& methods)
+{
+    const std::string page = file_text(out / "index.html");
+    ASSERT_FALSE(page.empty());
+    const std::regex source(R"re(src="([^"]*)")re");
+    std::set<std::string> named;
+    for (auto it = std::sregex_iterator(page.begin(), page.end(), source); it != std::sregex_iterator(); ++it) {
+        const std::string file = (*it)[1];
+        EXPECT_EQ(file.find("://"), std::string::npos) << file;
+        EXPECT_NE(file.front(), '/') << file;
+        EXPECT_TRUE(fs::is_regular_file(out / file)) << "index.html names a missing picture: " << file;
+        named.insert(file);
+    }
+    EXPECT_TRUE(named.count("chart.png"));
+    EXPECT_TRUE(named.count("error_scale.png"));
+    for (const std::string& scene : reference::builtin_scene_names()) {
+        EXPECT_TRUE(named.count(scene + "/truth.png")) << scene;
+        for (const std::string& method : methods) {
+            EXPECT_TRUE(named.count(scene + "/" + method + ".png")) << scene << " " << method;
+            EXPECT_TRUE(named.count(scene + "/" + method + "_error.png")) << scene << " " << method;
+            EXPECT_NE(page.find("<figcaption>" + method + ", "), std::string::npos) << method;
+        }
+    }
+    for (const char* section : {"id=\"summary\"", "id=\"results\"", "id=\"pictures\""})
+        EXPECT_NE(page.find(section), std::string::npos) << section;
+}
+
 TEST(Demo, QuickRunCoversEveryMethodOnEverySceneWithoutNaN)
 {
     const fs::path out = scratch("demo");
-    ASSERT_EQ(run("demo --quick --out " + out.string(), out / "log.txt"), 0) << std::ifstream(out / "log.txt").rdbuf();
+    ASSERT_EQ(run("demo --quick --frame 160x90 --out " + out.string(), out / "log.txt"), 0)
+        << std::ifstream(out / "log.txt").rdbuf();
     std::ifstream csv(out / "results.csv");
     std::string header;
     std::getline(csv, header);
-    EXPECT_EQ(header, "scene,method,settings,backend,ms_per_mpix,rmse,p99,leak,overdark,flicker");
+    EXPECT_EQ(header,
+              "scene,method,settings,backend,frame,map_ms,receiver_ms,frame_ms,frame_ms_min,frame_ms_max,repetitions,"
+              "rmse,p99,leak,overdark,flicker,truth_noise");
     std::map<std::string, std::set<std::string>> methods_per_scene;
     std::set<std::string> all_methods;
     for (std::string line; std::getline(csv, line);) {
         const auto cells = split_csv_line(line);
-        ASSERT_EQ(cells.size(), 10u) << line;
+        ASSERT_EQ(cells.size(), 17u) << line;
         methods_per_scene[cells[0]].insert(cells[1]);
         all_methods.insert(cells[1]);
-        for (int c = 4; c < 10; ++c) {
+        EXPECT_EQ(cells[4], "160x90") << line;  // the timed frame
+        for (int c = 5; c < 17; ++c) {
             const double value = std::stod(cells[c]);
             EXPECT_TRUE(std::isfinite(value)) << line;
             EXPECT_GE(value, 0.0) << line;
         }
+        const double map = std::stod(cells[5]), receivers = std::stod(cells[6]), frame = std::stod(cells[7]);
+        const double low = std::stod(cells[8]), high = std::stod(cells[9]);
+        EXPECT_LE(low, frame) << line;
+        EXPECT_LE(frame, high) << line;
+        EXPECT_GT(frame, 0.0) << line;
+        EXPECT_LE(map, high) << line;
+        EXPECT_LE(receivers, high) << line;
+        EXPECT_GE(std::stoi(cells[10]), 5) << line;  // medians of at least 5
     }
     for (const std::string& scene : reference::builtin_scene_names()) {
         EXPECT_EQ(methods_per_scene[scene], all_methods) << scene;
@@ -83,6 +134,7 @@ TEST(Demo, QuickRunCoversEveryMethodOnEverySceneWithoutNaN)
     }
     EXPECT_TRUE(all_methods.count("vsm") && all_methods.count("vssm"));
     EXPECT_TRUE(fs::exists(out / "chart.png"));
+    expect_report_names_only_existing_pictures(out, all_methods);
     fs::remove_all(out);
 }
 
@@ -114,7 +166,8 @@ TEST(Demo, ALogGetsOneProgressLinePerSceneAndMethod)
     }
     EXPECT_TRUE(table_seen);
     EXPECT_EQ(last_done, total);
-    const std::vector<std::string> expected = {"contact: ground truth, 2 frames", "contact: vsm", "contact: pcf"};
+    const std::vector<std::string> expected = {"contact: ground truth, 2 frames", "contact: vsm", "contact: pcf",
+                                               "contact: timing, 6 settings x 5 on 240x135"};
     EXPECT_EQ(units, expected);
     fs::remove_all(out);
 }
@@ -127,6 +180,14 @@ TEST(Demo, BadSceneOrOptionIsBadInput)
     log << std::ifstream(out / "log.txt").rdbuf();
     EXPECT_NE(log.str().find("contact"), std::string::npos) << log.str();  // names the valid scenes
     EXPECT_EQ(run("demo --frames 1 --out " + out.string(), out / "log.txt"), 2);
+    // Fewer than 5 repetitions, or a frame that is no WxH or too large: refused
+    // with one line naming the option, before any work.
+    for (const char* bad : {"--repetitions 4", "--repetitions x", "--frame 1920", "--frame 0x10", "--frame 5000x10"}) {
+        EXPECT_EQ(run(std::string("demo --quick ") + bad + " --out " + out.string(), out / "log.txt"), 2) << bad;
+        const std::string text = file_text(out / "log.txt");
+        EXPECT_NE(text.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << text;
+        EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+    }
     fs::remove_all(out);
 }
 
