@@ -89,6 +89,7 @@ typedef struct {
 #define PN_SDF_CAPSULE_FLOATS 8
 #define PN_SDF_CLASSIC 0  /* estimate: k h / t */
 #define PN_SDF_IMPROVED 1 /* estimate: k d / (t - y), two-step closest approach */
+#define PN_SDF_INNER 2    /* estimate: signed k h / t through solids, smoothstep from [-1, 1] */
 typedef struct {
     pn_dims receivers;       /* 3 planes: world x, y, z */
     pn_dims normals;         /* 3 planes: unit normals (read when normal_offset != 0) */
@@ -96,7 +97,7 @@ typedef struct {
     int grid_nx, grid_ny, grid_nz;  /* grid: nodes per axis (>= 2), x fastest */
     int planes, spheres, boxes, capsules;  /* analytic: records of each kind */
     int max_steps;           /* distance evaluations per ray (>= 1) */
-    int estimate;            /* PN_SDF_CLASSIC or PN_SDF_IMPROVED */
+    int estimate;            /* PN_SDF_CLASSIC, PN_SDF_IMPROVED or PN_SDF_INNER */
     int light_is_direction;  /* 1: light_* is the unit direction to the light */
     int write_steps;         /* 1: out plane 1 gets each ray's distance evaluations */
     float light_x, light_y, light_z;  /* the light's centre, or the direction */

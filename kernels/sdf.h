@@ -27,6 +27,18 @@
  *             The triangulation assumes a point-like occluder: against a
  *             smooth one it reads narrower (sqrt(3)/2 of the clearance of a
  *             plane grazed at a small angle), which darkens penumbrae a little.
+ *   inner:    res = min(res, k h / t) with h signed: the ray goes on through
+ *             solids (no hit), so inside an occluder k h / t goes negative,
+ *             and the visibility is smoothstep(-1, 1, res) =
+ *             (1 + r)^2 (2 - r) / 4 with r = clamp(res, -1, 1): 1/2 where
+ *             the ray to the light's centre grazes an edge, 0 only once the
+ *             ray has been 1/k deep inside (the umbra), so the estimate
+ *             covers both halves of a penumbra (the "inner penumbra" variant
+ *             of Quilez's article, 2020 revision; docs/sdf.md). Each step is
+ *             at least max(hit_epsilon, PN_SDF_INNER_STEP t / k): since d is
+ *             1-Lipschitz, k h / t moves by at most about PN_SDF_INNER_STEP
+ *             between samples, and a ray crosses an occluder's interior in
+ *             about 1 / PN_SDF_INNER_STEP steps before res <= -1 ends it.
  *
  * k (> 0, "hardness") sets how wide a safe angle counts as fully lit:
  * 1 / k radians. For a light of width W at distance D, k = c 2 D / W
@@ -34,15 +46,18 @@
  * With k_per_distance > 0 (a light at a point), each receiver computes its
  * own k = k_per_distance D from its distance D to the light's centre.
  *
- * A lane stops when h < hit_epsilon (a hit: visibility 0), when t >= t_end
- * (escaped: the estimate so far), or after max_steps distance evaluations
- * (exhausted: the estimate so far; the rest of the ray counts as clear).
- * Output: visibility clamp(res, 0, 1) in [0, 1], never NaN; optionally the
- * number of distance evaluations per receiver (the lane's active steps).
+ * A lane stops when h < hit_epsilon (a hit: visibility 0; inner: when
+ * res <= -1, visibility 0), when t >= t_end (escaped: the estimate so far),
+ * or after max_steps distance evaluations (exhausted: the estimate so far;
+ * the rest of the ray counts as clear). Output: visibility clamp(res, 0, 1)
+ * (inner: its smoothstep) in [0, 1], never NaN; optionally the number of
+ * distance evaluations per receiver (the lane's active steps).
  *
  * Boundary policy.
  *  - A receiver inside a solid (f(o + t_min w) < hit_epsilon, negative
- *    included) is in shadow, as the ground truth's rays from inside are.
+ *    included) is in shadow, as the ground truth's rays from inside are
+ *    (inner: k f / t_min <= -1 at the first step, for any solid deeper than
+ *    t_min / k).
  *  - Distance grid (sdf_grid): nodes (i, j, k) at grid_origin + voxel (i, j, k),
  *    x fastest; trilinear inside the box of nodes. Outside it the world is
  *    empty but for what the grid holds: for the nearest box point q at
@@ -69,6 +84,7 @@
 #define PN_SDF_FAR 1e30f        /* "no surface": the distance of an empty scene */
 #define PN_SDF_NO_PREVIOUS 1e20f /* h_prev before the first step (Quilez) */
 #define PN_SDF_TINY 1e-30f      /* keeps divisions by lengths and t finite */
+#define PN_SDF_INNER_STEP 0.25f /* inner estimate: the least step, in units of t / k */
 
 typedef struct {
     pn_float x, y, z;
@@ -251,18 +267,37 @@ PN_FN void sdf_march_step(SdfMarch* m, pn_float h, const SdfParams p)
 {
     const pn_float estimate = p.estimate == PN_SDF_IMPROVED ? sdf_improved_estimate(m->k, h, m->h_prev, m->t)
                                                             : sdf_classic_estimate(m->k, h, m->t);
-    const pn_mask hit = pn_and(m->active, h < p.hit_epsilon);
     m->res = pn_select(m->active, pn_min(m->res, estimate), m->res);
-    m->res = pn_select(hit, 0.0f, m->res);
     m->steps = pn_select(m->active, m->steps + 1.0f, m->steps);
     m->h_prev = pn_select(m->active, h, m->h_prev);
-    m->t = pn_select(m->active, m->t + h, m->t);
-    m->active = pn_and(pn_and(m->active, pn_not(hit)), m->t < m->t_end);
+    pn_mask done;
+    if (p.estimate == PN_SDF_INNER) {
+        /* Through solids: at least PN_SDF_INNER_STEP / k of the way per step
+         * (relative to t), so that k h / t moves by at most about that much
+         * between samples; done once the umbra is certain (res <= -1). */
+        const pn_float floor = pn_max(p.hit_epsilon, m->t * (PN_SDF_INNER_STEP / m->k));
+        m->t = pn_select(m->active, m->t + pn_max(h, floor), m->t);
+        done = m->res <= -1.0f;
+    } else {
+        done = h < p.hit_epsilon;
+        m->res = pn_select(pn_and(m->active, done), 0.0f, m->res);
+        m->t = pn_select(m->active, m->t + h, m->t);
+    }
+    m->active = pn_and(pn_and(m->active, pn_not(done)), m->t < m->t_end);
+}
+
+/* The inner-penumbra estimate's visibility: smoothstep from -1 to 1. */
+PN_FN pn_float sdf_inner_visibility(pn_float res)
+{
+    const pn_float r = pn_clamp(res, -1.0f, 1.0f);
+    return 0.25f * (1.0f + r) * (1.0f + r) * (2.0f - r);
 }
 
 PN_FN void sdf_march_end(PN_GLOBAL float* out, const SdfParams p, int x, int y, const SdfMarch* m)
 {
-    pn_store(out, p.out, x, y, pn_clamp(m->res, 0.0f, 1.0f));
+    const pn_float visibility =
+        p.estimate == PN_SDF_INNER ? sdf_inner_visibility(m->res) : pn_clamp(m->res, 0.0f, 1.0f);
+    pn_store(out, p.out, x, y, visibility);
     if (p.write_steps) pn_store(PN_PLANE(out, p.out, 1), p.out, x, y, m->steps);
 }
 

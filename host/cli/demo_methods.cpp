@@ -158,7 +158,8 @@ std::vector<SweepPoint> pcf_disc_sweep()
 // grid is what an engine bakes offline, so it is baked once per scene (not
 // timed) at a node budget that grows with the demo's map size; the analytic
 // form evaluates the primitives in the kernel. k comes from the light's size
-// (sdf_options_for); the sweep is the estimate and half / double that k.
+// (sdf_options_for); the sweep is the estimate (the inner-penumbra one
+// first, the preview) and half / double the classic k.
 // A scene's distance grid, baked once, when first asked for.
 class LazyGrid {
 public:
@@ -193,7 +194,8 @@ DemoMethod sdf_method(const reference::Scene& scene, int map_size, SdfSource sou
         SdfEstimate estimate;
         float k_scale;
     };
-    for (Variant v : {Variant{"classic", SdfEstimate::Classic, 1.0f}, Variant{"improved", SdfEstimate::Improved, 1.0f},
+    for (Variant v : {Variant{"inner", SdfEstimate::InnerPenumbra, 1.0f}, Variant{"classic", SdfEstimate::Classic, 1.0f},
+                      Variant{"improved", SdfEstimate::Improved, 1.0f},
                       Variant{"classic k/2", SdfEstimate::Classic, 0.5f},
                       Variant{"classic 2k", SdfEstimate::Classic, 2.0f}}) {
         // No per-map step: the grid is baked offline (and not timed).
@@ -251,7 +253,7 @@ std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size
     DemoMethod sdf_grid = sdf_method(scene, map_size, SdfSource::Grid);
     const DemoMethod vsm = table_method("vsm", radius_sweep());
     const DemoMethod pcf_disc = table_method("pcf-disc", pcf_disc_sweep());
-    const std::vector<int> vsm_small_radii = {0, 1}, sdf_classic = {0};  // blurred: the noisiest settings
+    const std::vector<int> vsm_small_radii = {0, 1}, sdf_inner = {0};  // blurred: the noisiest settings
     const std::vector<int> disc_few_taps = {0, 1};  // Toy Story 3's noisy PCF, then the cross-bilateral
     MethodSettings msm_soft_base;
     msm_soft_base.depth_bias = kDemoMsmDepthBias;
@@ -265,7 +267,7 @@ std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size
             table_method("pcss", light_sweep(scene, map_size, pcf_settings())),
             table_method("burley", burley_sweep(scene, map_size)),
             sdf_grid,
-            blurred_method(sdf_grid, "sdf+blur", sdf_classic),
+            blurred_method(sdf_grid, "sdf+blur", sdf_inner),
             sdf_method(scene, map_size, SdfSource::Analytic),
             table_method("pcf", pcf_sweep()),
             table_method("pcf-gauss", pcf_gauss_sweep()),

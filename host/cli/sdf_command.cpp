@@ -45,15 +45,17 @@ const char* kShadeHelp =
     "options:\n"
     "  --source S            with --scene: analytic (default: the primitives) or grid (baked from them)\n"
     "  --voxel V             grid baked from --scene: node spacing in world units (default: 8 Mi nodes)\n"
-    "  --estimate E          classic (default, k h / t) or improved (closest approach from two steps)\n"
-    "  --k K                 hardness > 0 (default with --scene: 2, relative to the light's width)\n"
+    "  --estimate E          inner (default: signed k h / t through solids, both halves of a penumbra),\n"
+    "                        classic (k h / t, 0 once the ray hits) or improved (closest approach from two steps)\n"
+    "  --k K                 hardness > 0 (default with --scene, relative to the light's width: inner pi/4\n"
+    "                        for a square light, 1 for a disk; classic and improved 2)\n"
     "  --light-width W       > 0: k is relative to the light's half-angle seen from each receiver\n"
     "                        (default with --scene: the scene light's width; 0 = k is absolute)\n"
     "  --light-position X,Y,Z  rays end at the light's centre (default with --scene: the scene's light)\n"
     "  --light-direction X,Y,Z rays go towards a distant light, up to --t-max\n"
     "  --t-min T --t-max T   march interval along each ray (world units; t-max > t-min)\n"
     "  --max-steps N         distance evaluations per ray, >= 1 (default 256 with --scene, else 128)\n"
-    "  --hit-epsilon E       a distance below E is a hit, > 0\n"
+    "  --hit-epsilon E       > 0: a distance below E is a hit (classic, improved); the least step (inner)\n"
     "  --normal-offset O     lift receivers along N by O >= 0 (needs N.x, N.y, N.z)\n"
     "  --steps               also write channel `steps`\n"
     "  --backend B           auto (default), simd, opencl or scalar\n"
@@ -151,7 +153,8 @@ SdfEstimate parse_estimate(const std::string& text)
 {
     if (text == "classic") return SdfEstimate::Classic;
     if (text == "improved") return SdfEstimate::Improved;
-    throw UsageError{"option --estimate: '" + text + "' is not classic or improved"};
+    if (text == "inner") return SdfEstimate::InnerPenumbra;
+    throw UsageError{"option --estimate: '" + text + "' is not classic, improved or inner"};
 }
 
 Backend backend_from(const Args& args)
@@ -186,7 +189,7 @@ int sdf_shade_command(const std::vector<std::string>& argv)
     if (args.get("--grid") && args.get("--source")) throw UsageError{"option --source: only with --scene"};
     if (args.get("--voxel") && !(args.get("--scene") && source == "grid"))
         throw UsageError{"option --voxel: only with --scene and --source grid"};
-    const SdfEstimate estimate = parse_estimate(args.text("--estimate", "classic"));
+    const SdfEstimate estimate = parse_estimate(args.text("--estimate", "inner"));
     const Backend backend = backend_from(args);
 
     std::optional<reference::Scene> scene;

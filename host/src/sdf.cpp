@@ -83,7 +83,9 @@ SdfParams base_params(const Image& positions, const Image& out, const SdfOptions
     p.receivers = detail::dims_of(positions);
     p.out = detail::dims_of(out);
     p.max_steps = o.max_steps;
-    p.estimate = o.estimate == SdfEstimate::Improved ? PN_SDF_IMPROVED : PN_SDF_CLASSIC;
+    p.estimate = o.estimate == SdfEstimate::Improved        ? PN_SDF_IMPROVED
+                 : o.estimate == SdfEstimate::InnerPenumbra ? PN_SDF_INNER
+                                                            : PN_SDF_CLASSIC;
     p.write_steps = out.channels() == 2;
     SdfVec3 light = o.light.vector;
     if (o.light.directional) {

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <variant>
 
@@ -29,6 +30,15 @@ double reference_distance(const Scene& scene)
 // A light's width for the half-angle: the side of a square, the diameter of a
 // disk, the geometric mean of a rectangle's sides.
 double light_width(const AreaLight& light) { return std::sqrt(light.width * light.height); }
+
+// The light's extent across a shadow edge, averaged over the edge's
+// directions: its mean breadth (Cauchy: perimeter / pi for a convex shape),
+// 2 (w + h) / pi for a rectangle (4 W / pi for a square), the diameter for a
+// disk. The inner-penumbra estimate spans it (docs/sdf.md).
+double mean_breadth(const AreaLight& light)
+{
+    return light.shape == LightShape::Disk ? light_width(light) : 2.0 * (light.width + light.height) / std::numbers::pi;
+}
 
 }  // namespace
 
@@ -142,7 +152,10 @@ SdfOptions sdf_options_for(const Scene& scene, SdfEstimate estimate)
     const double distance = reference_distance(scene);
     SdfOptions o;
     o.light = SdfLight::at(to_sdf(scene.light.center));
-    o.k = float(kSdfHardnessFit);
+    // Inner: k relative to the light's width W, 1 at the mean breadth (pi / 4 for a square).
+    o.k = float(estimate == SdfEstimate::InnerPenumbra
+                    ? kSdfInnerHardnessFit * light_width(scene.light) / mean_breadth(scene.light)
+                    : kSdfHardnessFit);
     o.light_width = float(light_width(scene.light));
     o.estimate = estimate;
     o.hit_epsilon = float(1e-5 * distance);

@@ -71,11 +71,12 @@ protected:
 TEST_F(SdfCli, SceneAndGridMatchTheLibrary)
 {
     Context ctx(ContextOptions{Backend::Scalar, {}});
-    for (const std::string estimate : {"classic", "improved"}) {
+    for (const std::string estimate : {"classic", "improved", "inner"}) {
         const testing::ToolRun r = run(shade("--scene contact --backend scalar --steps --estimate " + estimate));
         ASSERT_EQ(r.status, 0) << r.err;
-        const SdfOptions o = sdf_options_for(scene_, estimate == "classic" ? SdfEstimate::Classic
-                                                                           : SdfEstimate::Improved);
+        const SdfOptions o = sdf_options_for(scene_, estimate == "classic"    ? SdfEstimate::Classic
+                                                     : estimate == "improved" ? SdfEstimate::Improved
+                                                                              : SdfEstimate::InnerPenumbra);
         expect_equal(read_exr(path("out.exr"), {"Y"}),
                      sdf_shadows(ctx, reference::analytic_scene(scene_.primitives), rx_.world_position, &rx_.normal, o));
         EXPECT_GE(read_exr(path("out.exr"), {"steps"}).at(0, 11, 8), 1.0f);
@@ -86,7 +87,8 @@ TEST_F(SdfCli, SceneAndGridMatchTheLibrary)
     const SdfOptions o = sdf_options_for(scene_);
     const Image from_grid = sdf_shadows(ctx, grid, rx_.world_position, &rx_.normal, o);
     expect_equal(read_exr(path("out.exr"), {"Y"}), from_grid);
-    ASSERT_EQ(run(shade("--grid " + path("g.pnsdf") + " --k 2 --light-width 1.5 --light-position -2.5,9,-1.5 "
+    ASSERT_EQ(run(shade("--grid " + path("g.pnsdf") + " --k " + std::to_string(o.k) +
+                        " --light-width 1.5 --light-position -2.5,9,-1.5 "
                         "--hit-epsilon " + std::to_string(o.hit_epsilon) + " --t-min " + std::to_string(o.t_min) +
                         " --normal-offset " + std::to_string(o.normal_offset) + " --max-steps 256 --backend scalar"))
                   .status,

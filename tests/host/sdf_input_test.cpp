@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <numbers>
 #include <string>
 
 #include "penumbra/error.h"
@@ -207,6 +208,10 @@ TEST(SdfInput, HardnessFollowsTheLightsSize)
     EXPECT_EQ(o.k, float(kSdfHardnessFit));
     EXPECT_EQ(o.light_width, 1.5f);  // so each receiver's k is sdf_hardness(1.5, its distance)
     EXPECT_EQ(o.estimate, SdfEstimate::Improved);
+    // The inner-penumbra estimate (the default) spans the square light's mean breadth 4 W / pi.
+    const SdfOptions inner = sdf_options_for(contact);
+    EXPECT_EQ(inner.estimate, SdfEstimate::InnerPenumbra);
+    EXPECT_FLOAT_EQ(inner.k, float(kSdfInnerHardnessFit * std::numbers::pi / 4));
     EXPECT_FALSE(o.light.directional);
     EXPECT_EQ(o.light.vector, reference::to_sdf(contact.light.center));
     expect_error([] { sdf_hardness(0.0, 1.0); }, ErrorCategory::InvalidArgument, "width");

@@ -64,6 +64,31 @@ PN_BACKEND_TEST(MsmSoftTest, StraightEdgeByHand)
     }
 }
 
+// The halo of issue 13: blockers of two depths in the search window, each far
+// enough from the receiver to leave it lit by PCSS's own geometry (a blocker
+// at z_b shadows a receiver at z only within w / 2 = L (z - z_b) / (2 z_b) of
+// it), but their mean depth is nearer the light than the nearer one's, so
+// the penumbra window that mean gives holds it. 64 x 16 map, ground 0.75,
+// receiver at column 32 (centre 32.5), L W = 40 texels: B1 at depth 0.6 over
+// columns 39-41 (6.5 texels away; its w / 2 is 5), B2 at 0.4 over 50-51 (17.5
+// away; its w / 2 is 17.5, the edge of its reach). One search (the code
+// before issue 13): mean blocker depth about 0.5, a window of about 9 texels
+// that holds B1: 0.861. Searching again over each window found
+// (kernels/msm_soft.h) narrows it to B1's depth, 5 texels, then finds no
+// blocker: exactly 1.
+PN_BACKEND_TEST(MsmSoftTest, NoHaloFromBlockersOfTwoDepths)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    Image depth(64, 16, 1);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 64; ++x) depth.at(0, x, y) = x >= 39 && x <= 41 ? 0.6f : x >= 50 && x <= 51 ? 0.4f : 0.75f;
+    const Image rx = testing::receivers_at_depth(64, 16, 0.75f);
+    for (Quantization q : {Quantization::Bits16, Quantization::Bits32}) {
+        const Image out = msm_soft(ctx, table_for(ctx, depth, q), rx, MsmSoftOptions{40.0f / 64.0f, {}, {}});
+        for (int y = 0; y < 16; ++y) EXPECT_EQ(out.at(0, 32, y), 1.0f) << backend << " " << to_string(q) << " row " << y;
+    }
+}
+
 // No blocker in front: exactly 1. On flat ground 0.01 below the receivers
 // whatever the light size (up to a search over the whole map); on ground
 // sloping 0.004 per texel for lights whose search (half-width L W / 2, plus

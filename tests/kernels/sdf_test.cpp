@@ -31,24 +31,15 @@ using testing::backend_test_name;
 
 class SdfTest : public ::testing::TestWithParam<std::string> {};
 
+// The two estimates that stop at a hit; the inner-penumbra one has its own
+// tests (sdf_inner_test.cpp) and joins these in the estimate-agnostic ones.
 const SdfEstimate kEstimates[] = {SdfEstimate::Classic, SdfEstimate::Improved};
+const SdfEstimate kAllEstimates[] = {SdfEstimate::Classic, SdfEstimate::Improved, SdfEstimate::InnerPenumbra};
 
-const char* name_of(SdfEstimate e) { return e == SdfEstimate::Classic ? "classic" : "improved"; }
+using testing::name_of;
 
-// Receivers on the ground along x, through the sphere's shadow, normals up.
-struct Profile {
-    std::vector<Vec3> points;
-    Image positions, normals;
-};
-
-Profile ground_profile(double x0, double x1, int n, double z)
-{
-    Profile p;
-    for (int i = 0; i < n; ++i) p.points.push_back({x0 + (x1 - x0) * i / (n - 1), 0.0, z});
-    p.positions = testing::points_image(p.points, n);
-    p.normals = testing::points_image(std::vector<Vec3>(p.points.size(), Vec3{0, 1, 0}), n);
-    return p;
-}
+using testing::ground_profile;
+using testing::Profile;
 
 // The clearance-angle estimate against its ideal value: sphere tracing only
 // samples the ray, so the classic estimate is never below the ideal (1e-4 of
@@ -98,9 +89,7 @@ PN_BACKEND_TEST(SdfTest, SphereOverPlaneAgainstGroundTruth)
     const reference::Scene scene = testing::sphere_over_plane();
     const reference::PreparedScene prepared(scene.primitives);
     const Profile profile = ground_profile(-2.0, 2.0, 81, 0.1);
-    std::vector<double> truth;
-    for (int i = 0; i < 81; ++i)
-        truth.push_back(reference::light_visibility(prepared, scene.light, profile.points[i], {0, 1, 0}, 64, i));
+    const std::vector<double> truth = testing::profile_truth(prepared, scene.light, profile);
     for (SdfEstimate estimate : kEstimates) {
         const SdfOptions o = sdf_options_for(scene, estimate);
         const Image out = sdf_shadows(ctx, reference::analytic_scene(scene.primitives), profile.positions, &profile.normals, o);
@@ -162,7 +151,7 @@ PN_BACKEND_TEST(SdfTest, ReceiversInsideSolidsAreInShadow)
                                       {1.5, 0.5, 0.05}, {1.45, 0.9, 0},  {-1.5, 0.3, 0.4}, {-1.45, 0.35, 0.1}};
     const Image positions = testing::points_image(inside, int(inside.size()));
     const DistanceGrid grid = bake_distance_grid(scene, distance_grid_box(scene, 0.3), 0.05);
-    for (SdfEstimate estimate : kEstimates) {
+    for (SdfEstimate estimate : kAllEstimates) {
         SdfOptions o = sdf_options_for(scene, estimate);
         o.normal_offset = 0.0f;
         Image out(positions.width(), 1, 2);
@@ -308,7 +297,7 @@ PN_BACKEND_TEST(SdfTest, ReceiversOutsideTheGrid)
                                       {-0.6, 0, 0.45}, {1000, 0, 0},   {0, 0, -1000}};
     const Image rx = testing::points_image(points, int(points.size()));
     const Image up = testing::points_image(std::vector<Vec3>(points.size(), Vec3{0, 1, 0}), int(points.size()));
-    for (SdfEstimate estimate : kEstimates) {
+    for (SdfEstimate estimate : kAllEstimates) {
         const SdfOptions o = sdf_options_for(scene, estimate);
         const Image g = sdf_shadows(ctx, grid, rx, &up, o);
         const Image a = sdf_shadows(ctx, reference::analytic_scene(scene.primitives), rx, &up, o);
@@ -354,11 +343,12 @@ PN_BACKEND_TEST(SdfTest, OddSizesMatchPixelByPixel)
     const ContactReceivers& c = contact();
     std::vector<int> widths = testing::lane_edge_widths();
     widths.push_back(7);
+    for (SdfEstimate estimate : kAllEstimates)
     for (bool use_grid : {false, true})
         for (int w : widths) {
             const int h = w == 7 ? 3 : 1 + w % 2;
             const Image pos = crop(c.r.world_position, 5, 20, w, h), nrm = crop(c.r.normal, 5, 20, w, h);
-            const SdfOptions o = sdf_options_for(c.scene);
+            const SdfOptions o = sdf_options_for(c.scene, estimate);
             Image all(w, h, 2), one(1, 1, 2);
             if (use_grid) sdf_shadows(ctx, c.grid, pos, &nrm, o, all);
             else sdf_shadows(ctx, c.analytic, pos, &nrm, o, all);
@@ -373,8 +363,8 @@ PN_BACKEND_TEST(SdfTest, OddSizesMatchPixelByPixel)
         }
 }
 
-// Against the scalar oracle on the contact view (grid and analytic, both
-// estimates). The kernel has no pn_fma and every binding rounds + - * / sqrt
+// Against the scalar oracle on the contact view (grid and analytic, every
+// estimate). The kernel has no pn_fma and every binding rounds + - * / sqrt
 // correctly, so the backends agree to the bit and take the same steps; the
 // stated tolerance is 1e-6 in visibility (measured: 0, every backend here).
 // Its own suite, instantiated without scalar: scalar against itself would count as a pass.
@@ -386,7 +376,7 @@ PN_BACKEND_TEST(SdfAgreement, AgreesWithTheScalarOracle)
     Context& oracle = testing::scalar_oracle(backend);
     const ContactReceivers& c = contact();
     for (bool use_grid : {false, true})
-        for (SdfEstimate estimate : kEstimates) {
+        for (SdfEstimate estimate : kAllEstimates) {
             const SdfOptions o = sdf_options_for(c.scene, estimate);
             Image got(64, 48, 2), want(64, 48, 2);
             if (use_grid) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 namespace penumbra::testing::fidelity {
@@ -567,6 +568,23 @@ real soft_filter_answer(Method m, const Moments& filter, const Receiver64& r, co
     return 1 - msm_intensity(filter, r.z, p.moment_bias);
 }
 
+// kernels/msm_soft.h: MSM-soft searches again for blockers over each filter
+// window it found (PN_MSM_SOFT_SEARCHES windows in all, the light's first); VSSM once.
+constexpr int kMsmSoftSearches = 3;
+
+// The filter window from the first search's moments, or nothing for a lit
+// receiver (no blocker in any of the searches).
+std::optional<Span> refined_filter_span(Method m, const Image& depth, const Moments& first, const Receiver64& r,
+                                        const Params& p)
+{
+    Search found = soft_search(m, first, r, p);
+    const int searches = m == Method::MsmSoft ? kMsmSoftSearches : 1;
+    for (int pass = 1; !found.lit && pass < searches; ++pass)
+        found = soft_search(m, span_moments(depth, filter_span(depth, r, found.z_occ, p), identity, p), r, p);
+    if (found.lit) return std::nullopt;
+    return filter_span(depth, r, found.z_occ, p);
+}
+
 Answer soft_method(Method m, const Image& depth, Receiver rf, const Params& p, bool with_movement)
 {
     Receiver64 r = widen(rf);
@@ -576,9 +594,9 @@ Answer soft_method(Method m, const Image& depth, Receiver rf, const Params& p, b
     }
     const Moments search = span_moments(depth, search_span(depth, r, p), identity, p);
     const auto answer_from = [&](const Moments& s, unsigned filter_signs, bool perturb_filter) {
-        const Search found = soft_search(m, s, r, p);
-        if (found.lit) return real(1);
-        Moments filter = span_moments(depth, filter_span(depth, r, found.z_occ, p), identity, p);
+        const std::optional<Span> span = refined_filter_span(m, depth, s, r, p);
+        if (!span) return real(1);
+        Moments filter = span_moments(depth, *span, identity, p);
         if (perturb_filter) filter = perturbed(filter, raw_count(m), filter_signs, kPerturbation);
         return soft_filter_answer(m, filter, r, p);
     };
@@ -588,12 +606,12 @@ Answer soft_method(Method m, const Image& depth, Receiver rf, const Params& p, b
     a.movement = 0;
     for (unsigned s = 0; s < (1u << count); ++s) {
         const Moments moved = perturbed(search, count, s, kPerturbation);
-        const Search found = soft_search(m, moved, r, p);
-        if (found.lit) {
+        const std::optional<Span> span = refined_filter_span(m, depth, moved, r, p);
+        if (!span) {
             a.movement = std::max(a.movement, std::fabs(1 - a.visibility));
             continue;
         }
-        const Moments filter = span_moments(depth, filter_span(depth, r, found.z_occ, p), identity, p);
+        const Moments filter = span_moments(depth, *span, identity, p);
         for (unsigned f = 0; f < (1u << count); ++f) {
             const real v = soft_filter_answer(m, perturbed(filter, count, f, kPerturbation), r, p);
             a.movement = std::max(a.movement, std::fabs(v - a.visibility));

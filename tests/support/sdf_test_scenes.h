@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "penumbra/image.h"
+#include "penumbra/reference/ground_truth.h"
 #include "penumbra/reference/scene.h"
 #include "penumbra/reference/tracer.h"
 #include "penumbra/sdf.h"
@@ -46,6 +47,36 @@ inline Image points_image(const std::vector<Vec3>& points, int width)
         image.at(2, i % width, i / width) = float(p.z);
     }
     return image;
+}
+
+// Receivers on the ground along x (from x0 to x1, n of them, at z), normals up.
+struct Profile {
+    std::vector<Vec3> points;
+    Image positions, normals;
+};
+
+inline Profile ground_profile(double x0, double x1, int n, double z)
+{
+    Profile p;
+    for (int i = 0; i < n; ++i) p.points.push_back({x0 + (x1 - x0) * i / (n - 1), 0.0, z});
+    p.positions = points_image(p.points, n);
+    p.normals = points_image(std::vector<Vec3>(p.points.size(), Vec3{0, 1, 0}), n);
+    return p;
+}
+
+// The ground truth at each receiver of `p` (64^2 rays each, seed = index).
+inline std::vector<double> profile_truth(const reference::PreparedScene& scene, const reference::AreaLight& light,
+                                         const Profile& p)
+{
+    std::vector<double> truth;
+    for (std::size_t i = 0; i < p.points.size(); ++i)
+        truth.push_back(reference::light_visibility(scene, light, p.points[i], {0, 1, 0}, 64, int(i)));
+    return truth;
+}
+
+inline const char* name_of(SdfEstimate e)
+{
+    return e == SdfEstimate::Classic ? "classic" : e == SdfEstimate::Improved ? "improved" : "inner";
 }
 
 inline Vec3 pixel(const Image& image, int x, int y)
@@ -127,6 +158,24 @@ inline double ideal_visibility(const reference::PreparedScene& scene, const SdfO
 {
     const double clearance = ideal_clearance(scene, march_ray(o, position, normal), o.hit_epsilon);
     return std::clamp(receiver_k(o, position, normal) * clearance, 0.0, 1.0);
+}
+
+// The inner-penumbra estimate's ideal (SdfEstimate::InnerPenumbra, docs/sdf.md):
+// the signed clearance s = min over t in [t0, t1] of d(o + t w) / t, the ray
+// continuing through solids, then x = clamp(k s, -1, 1) and smoothstep from
+// -1 to 1, (1 + x)^2 (2 - x) / 4. Dense samples uniform in log t and in t.
+inline double ideal_inner_visibility(const reference::PreparedScene& scene, const SdfOptions& o, Vec3 position,
+                                     Vec3 normal)
+{
+    const MarchRay r = march_ray(o, position, normal);
+    const double t0 = std::max(r.t0, 1e-9);
+    double best = INFINITY;
+    const int n = 20000;
+    for (int i = 0; i <= n; ++i)
+        for (double t : {t0 * std::pow(r.t1 / t0, double(i) / n), t0 + (r.t1 - t0) * i / n})
+            best = std::min(best, scene.signed_distance(r.origin + r.dir * t) / t);
+    const double x = std::clamp(receiver_k(o, position, normal) * best, -1.0, 1.0);
+    return (1 + x) * (1 + x) * (2 - x) / 4;
 }
 
 }  // namespace penumbra::testing

@@ -63,12 +63,15 @@ DistanceGrid bake_distance_grid(const Scene& scene, std::size_t max_nodes = kSdf
 double sdf_hardness(const Scene& scene, double fit = kSdfHardnessFit);
 
 // The settings of the demo and the measured figures: rays towards the light's
-// centre; k = kSdfHardnessFit relative to each receiver's view of the light
-// (light_width = the light's width, so every receiver gets
-// sdf_hardness(W, its distance)); the estimate given; hit epsilon 1e-5 D (D
+// centre; k relative to each receiver's view of the light (light_width = the
+// light's width, so every receiver gets sdf_hardness(W, its distance, k)):
+// kSdfHardnessFit for Classic and Improved, kSdfInnerHardnessFit x W / the
+// light's mean breadth for InnerPenumbra (pi / 4 for a square light, 1 for a
+// disk: the light's extent across an edge of any direction); the estimate
+// given (default: the inner-penumbra one); hit epsilon 1e-5 D (D
 // as above); receivers lifted along their normals by 4 epsilon and t_min
 // 4 epsilon; 256 steps. Use with the receivers' normals
 // (render_receivers(...).normal).
-SdfOptions sdf_options_for(const Scene& scene, SdfEstimate estimate = SdfEstimate::Classic);
+SdfOptions sdf_options_for(const Scene& scene, SdfEstimate estimate = SdfEstimate::InnerPenumbra);
 
 }  // namespace penumbra::reference
