@@ -27,7 +27,7 @@ Image affine_plane(int width, int height, double a, double b)
 
 TEST(ReceiverPlane, FiniteDifferencesRecoverThePlanesSlopes)
 {
-    for (const auto [w, h] : {std::pair{7, 3}, std::pair{2, 2}, std::pair{33, 17}}) {
+    for (const auto& [w, h] : {std::pair{7, 3}, std::pair{2, 2}, std::pair{33, 17}}) {
         const Image out = detail::receivers_with_differences(affine_plane(w, h, 0.4, -0.25));
         ASSERT_EQ(out.channels(), PN_PCF_PLANES_WITH_DERIVATIVES);
         for (int y = 0; y < h; ++y)
@@ -56,7 +56,7 @@ TEST(ReceiverPlane, ADepthStepFallsBackToTheConstantBias)
 
 TEST(ReceiverPlane, AOnePixelGridHasNoPlane)
 {
-    for (const auto [w, h] : {std::pair{1, 1}, std::pair{1, 5}, std::pair{6, 1}}) {
+    for (const auto& [w, h] : {std::pair{1, 1}, std::pair{1, 5}, std::pair{6, 1}}) {
         const Image out = detail::receivers_with_differences(affine_plane(w, h, 0.4, -0.25));
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
