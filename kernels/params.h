@@ -50,7 +50,7 @@ typedef struct {
     int max_radius;         /* vssm: largest filter radius the table allows (texels) */
     float min_variance;     /* variance floor, in depth^2 */
     float bleed;            /* light-bleeding reduction in [0, 1) */
-    float light_size;       /* vssm: light width in texture units at the near plane */
+    float light_size;       /* vssm: texture units, the search width and L in w = L (z - z_b) / z_b */
     int limbs;              /* exact tables: 16-bit limbs per value (SatParams) */
 } ChebyshevParams;
 

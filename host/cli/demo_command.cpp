@@ -61,6 +61,7 @@ struct DemoOptions {
     ViewSize view{320, 240};
     ViewSize frame{1920, 1080};  // the timed receivers
     int strata = 24, frames = 3, repetitions = 5;
+    std::vector<double> budgets_ms = kDemoBudgetsMs;
 };
 
 // The timed frame's largest side: 4096^2 receivers are 0.8 GB of buffers.
@@ -76,11 +77,28 @@ std::vector<std::string> split_list(const std::string& text)
     return items;
 }
 
+// "16,33,100": milliseconds per timed frame, each in (0, 1e6], at most 8.
+std::vector<double> parse_budgets(const std::string& text)
+{
+    std::vector<double> budgets;
+    for (const std::string& item : split_list(text)) {
+        char* end = nullptr;
+        const double ms = std::strtod(item.c_str(), &end);
+        if (end == item.c_str() || *end != '\0' || !(ms > 0.0 && ms <= 1e6))
+            throw UsageError{"option --budgets: '" + item + "' is not a time in ms in (0, 1e6]; give e.g. 16,33,100"};
+        budgets.push_back(ms);
+    }
+    if (budgets.empty() || budgets.size() > 8)
+        throw UsageError{"option --budgets: give 1 to 8 times in ms, e.g. 16,33,100"};
+    std::sort(budgets.begin(), budgets.end());
+    return budgets;
+}
+
 DemoOptions parse_options(const std::vector<std::string>& argv)
 {
     const Args args(argv,
                     {"--out", "--backend", "--scene", "--method", "--map-size", "--view-size", "--samples", "--frames",
-                     "--frame", "--repetitions"},
+                     "--frame", "--repetitions", "--budgets"},
                     {"--quick"});
     DemoOptions o;
     o.quick = args.flag("--quick");
@@ -109,6 +127,7 @@ DemoOptions parse_options(const std::vector<std::string>& argv)
     o.repetitions = args.integer("--repetitions", o.repetitions);
     if (o.repetitions < kFewestRepetitions || o.repetitions > kMostRepetitions)
         throw UsageError{"option --repetitions: must be in [5, 100] (a median of fewer follows the machine's noise)"};
+    if (auto budgets = args.get("--budgets")) o.budgets_ms = parse_budgets(*budgets);
     return o;
 }
 
@@ -362,14 +381,15 @@ int demo_command(const std::vector<std::string>& argv)
     if (!argv.empty() && argv[0] == "--help") {
         std::cout << "usage: penumbra demo [--quick] [--out DIR] [--backend B] [--scene a,b] [--method a,b]\n"
                      "                     [--map-size N] [--view-size WxH] [--samples S] [--frames K]\n"
-                     "                     [--frame WxH] [--repetitions N]\n"
+                     "                     [--frame WxH] [--repetitions N] [--budgets MS,MS,...]\n"
                      "  every method with a sweep of its settings on every built-in scene, against the\n"
                      "  ray-traced ground truth: DIR/index.html (the report), DIR/results.csv,\n"
                      "  DIR/chart.png, DIR/<scene>/*.png|exr\n"
                      "  scored on --view-size receivers (default 320x240, 576 rays each, 3 frames for\n"
                      "  flicker); timed on --frame receivers (default 1920x1080): the map's and the\n"
                      "  receivers' work apart, medians of --repetitions (default 5, at least 5)\n"
-                     "  interleaved runs after a warm-up\n"
+                     "  interleaved runs after a warm-up; the summary's budgets per frame: --budgets\n"
+                     "  (default 16,33,100 ms)\n"
                      "  --quick: 128x96 receivers, 100 rays, 2 frames, 256^2 maps, a 240x135 frame\n";
         return 0;
     }
@@ -436,7 +456,7 @@ int demo_command(const std::vector<std::string>& argv)
     write_csv(o.out / "results.csv", rows, to_string(ctx.backend()), frame);
     write_error_scale_png((o.out / "error_scale.png").string());
     report.chart = draw_chart(o.out);
-    const std::vector<SceneSummary> summaries = summarize_scenes(rows, noise);
+    const std::vector<SceneSummary> summaries = summarize_scenes(rows, noise, o.budgets_ms);
     print_table(rows, frame);
     print_summary(summaries, frame);
     report.machine = "penumbra demo on " + ctx.description();

@@ -45,7 +45,8 @@ std::string row_label(const DemoRow& row)
 }  // namespace
 
 std::vector<SceneSummary> summarize_scenes(const std::vector<DemoRow>& rows,
-                                           const std::vector<std::pair<std::string, double>>& truth_noise)
+                                           const std::vector<std::pair<std::string, double>>& truth_noise,
+                                           const std::vector<double>& budgets_ms)
 {
     std::vector<SceneSummary> summaries;
     for (const auto& [scene, noise] : truth_noise) {
@@ -53,7 +54,7 @@ std::vector<SceneSummary> summarize_scenes(const std::vector<DemoRow>& rows,
         for (const DemoRow& row : rows)
             if (row.scene == scene) scene_rows.push_back(&row);
         SceneSummary summary{scene, noise, {}};
-        for (double budget : kDemoBudgetsMs) summary.picks.push_back(pick(scene_rows, budget, noise));
+        for (double budget : budgets_ms) summary.picks.push_back(pick(scene_rows, budget, noise));
         summary.picks.push_back(pick(scene_rows, 0.0, noise));
         summaries.push_back(std::move(summary));
     }

@@ -11,9 +11,11 @@
 
 namespace penumbra::cli {
 
-// Milliseconds per timed frame (1920x1080 by default): a real-time budget, a
-// share of one, and an interactive one.
-inline const std::vector<double> kDemoBudgetsMs = {1.0, 4.0, 16.0};
+// The default budgets, milliseconds per timed frame (1920x1080 by default):
+// 60, 30 and 10 frames per second. GPU budgets (1, 4 ms) fit no row on a
+// 2-core CPU, whose fastest 1080p row takes about 10 ms (docs/demo.md);
+// --budgets sets others.
+inline const std::vector<double> kDemoBudgetsMs = {16.0, 33.0, 100.0};
 
 struct DemoPick {
     double budget_ms = 0;                 // 0: no budget (the most accurate overall)
@@ -29,7 +31,8 @@ struct SceneSummary {
 
 // `rows` must outlive the result (the picks point into it).
 std::vector<SceneSummary> summarize_scenes(const std::vector<DemoRow>& rows,
-                                           const std::vector<std::pair<std::string, double>>& truth_noise);
+                                           const std::vector<std::pair<std::string, double>>& truth_noise,
+                                           const std::vector<double>& budgets_ms);
 
 // "best" and its ties as one line's text: "vssm L=0.05 (RMSE 0.0213, 3.1 ms; ties: msm-soft L=0.05)".
 std::string describe_pick(const DemoPick& pick);

@@ -174,7 +174,7 @@ const std::vector<MethodOption>& method_options()
          set_float<&S::min_variance, kMinVarianceRange>},
         {"bleed", "B", "light-bleeding reduction (0 = off)", "0", &kBleedRange, true,
          set_float<&S::bleed, kBleedRange>},
-        {"light-size", "L", "light width in texture units at the near plane (vssm, msm-soft: > 0; pcss: 0 = hard)",
+        {"light-size", "L", "light size L in texture units: the blocker search's width and L in the penumbra w = L (z - z_b) / z_b (docs/reference.md; vssm, msm-soft: > 0; pcss: 0 = hard)",
          "0.02", &kLightSizeOptionRange, true, set_float<&S::light_size, kLightSizeOptionRange>},
         {"moment-bias", "A", "share of each window moved to depths 0 and 1", "6e-5", &kMomentBiasRange, false,
          set_float<&S::moment_bias, kMomentBiasRange>},

@@ -208,6 +208,20 @@ TEST_F(CliRobustness, HelpIsAcceptedAnywhereByEveryCommand)
     }
 }
 
+// Issue 13: --light-size is L in w = L (z - z_b) / z_b, not the light's
+// width at the near plane, which overestimates the penumbra 8-32x
+// (docs/reference.md); the help must say what the kernels compute.
+TEST_F(CliRobustness, LightSizeHelpSaysWhatTheKernelsUse)
+{
+    const auto run = run_cli({"shade", "--help"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const std::size_t option = run.out.find("--light-size");
+    ASSERT_NE(option, std::string::npos) << run.out;
+    const std::string line = run.out.substr(option, run.out.find('\n', option) - option);
+    EXPECT_EQ(line.find("near plane"), std::string::npos) << line;
+    EXPECT_NE(line.find("L (z - z_b) / z_b"), std::string::npos) << line;
+}
+
 TEST_F(CliRobustness, BlurOfAHugeFiniteMaskStaysFinite)
 {
     Image mask(7, 3, 1), guide(7, 3, 1);

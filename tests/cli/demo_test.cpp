@@ -182,7 +182,8 @@ TEST(Demo, BadSceneOrOptionIsBadInput)
     EXPECT_EQ(run("demo --frames 1 --out " + out.string(), out / "log.txt"), 2);
     // Fewer than 5 repetitions, or a frame that is no WxH or too large: refused
     // with one line naming the option, before any work.
-    for (const char* bad : {"--repetitions 4", "--repetitions x", "--frame 1920", "--frame 0x10", "--frame 5000x10"}) {
+    for (const char* bad : {"--repetitions 4", "--repetitions x", "--frame 1920", "--frame 0x10", "--frame 5000x10",
+                            "--budgets 0", "--budgets 4,x", "--budgets nan"}) {
         EXPECT_EQ(run(std::string("demo --quick ") + bad + " --out " + out.string(), out / "log.txt"), 2) << bad;
         const std::string text = file_text(out / "log.txt");
         EXPECT_NE(text.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << text;

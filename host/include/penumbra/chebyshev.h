@@ -24,7 +24,7 @@ struct VsmOptions {
 };
 
 struct VssmOptions {
-    float light_size = 0.02f;             // light width in texture units at the near plane (> 0)
+    float light_size = 0.02f;             // texture units: the blocker search's width, and L in w = L (z - z_b) / z_b (> 0; docs/reference.md)
     float min_variance = kDefaultMinVariance;
     float bleed = 0.0f;
 };
