@@ -48,12 +48,6 @@ export ASAN_OPTIONS="log_path=$logs/asan:detect_leaks=1:strict_string_checks=1:d
 export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:abort_on_error=1"
 export PENUMBRA_CACHE_DIR="$PWD/$build/cache"
-# The main job's program cache (ours and PoCL's), when it ran first: the
-# OpenCL C is the same whatever the host code's instrumentation, so PoCL need
-# not compile it again here. A copy: the tests write to their cache.
-if [[ -d build/cache && ! -d $PENUMBRA_CACHE_DIR ]]; then
-  cp -a build/cache "$PENUMBRA_CACHE_DIR"
-fi
 
 status=0
 # The slow-labelled 16384^2 cases run in the main job; under ASan they take
@@ -70,9 +64,12 @@ status=0
 # The OpenCL cases of the kernel tests run in the second pass below, a
 # chosen set of them (under ASan they were 43% of this suite's time: each
 # process starts PoCL, whose code ASan does not see; our host code around it
-# is the same few launch and buffer functions for every kernel).
+# is the same few launch and buffer functions for every kernel), and so do
+# the runtime's and the cache repair's tests: as processes of a tenth of a
+# second each, LSan's tracer crashed at their exit, while PoCL's threads
+# were still starting, in both tries of four of them (docs/ci.md).
 ctest --test-dir "$build" --output-on-failure -j2 --timeout 1800 -LE 'slow|install' \
-  -E '(MomentFidelity|MomentAgreement)\..*/(sse4_2|avx2|avx512|opencl)( |$)|/opencl( |$)' \
+  -E '(MomentFidelity|MomentAgreement)\..*/(sse4_2|avx2|avx512|opencl)( |$)|/opencl( |$)|^OpenClRuntime\.|^OpenClCacheRepair\.' \
   --repeat until-pass:2 || status=1
 # Second pass: the OpenCL tests, with full unwinding through the driver
 # (8x slower) and suppressions by function only (lsan_precise.supp): a leak
