@@ -382,6 +382,109 @@ void require_known_methods(const DemoOptions& o)
         }
 }
 
+// What the scenes' runs gather for the outputs.
+struct DemoResults {
+    std::vector<DemoRow> rows;
+    std::vector<std::pair<std::string, double>> truth_noise;        // per scene
+    std::vector<std::pair<std::string, std::vector<DemoPicture>>> pictures;  // per scene
+};
+
+// The units of progress: per scene its truths, its settings and its timing.
+int count_work(const DemoOptions& o)
+{
+    int work = 0;
+    for (const std::string& name : o.scenes) {
+        const reference::Scene scene = reference::builtin_scene(name);
+        work += o.frames + 1;
+        for (const DemoMethod& m : demo_methods(scene, map_size_for(scene, o)))
+            if (wanted(o.methods, m.name)) work += int(m.settings.size());
+    }
+    return work;
+}
+
+std::vector<DemoMethod> wanted_methods(const reference::Scene& scene, const DemoOptions& o)
+{
+    std::vector<DemoMethod> methods;
+    for (DemoMethod& m : demo_methods(scene, map_size_for(scene, o)))
+        if (wanted(o.methods, m.name)) methods.push_back(std::move(m));
+    return methods;
+}
+
+// One scene: its truths, each setting's accuracy (and the preview setting's
+// pictures), then every setting timed on the frame.
+void run_scene(Context& ctx, const DemoOptions& o, const reference::Scene& scene, Progress& progress,
+               DemoResults& results)
+{
+    const std::string& name = scene.name;
+    const SceneFrames scene_frames = render_scene_frames(scene, o, progress);
+    const std::vector<DemoFrame>& frames = scene_frames.frames;
+    results.truth_noise.emplace_back(name, scene_frames.truth_noise);
+    progress.milestone(name + ": ground truth, " + std::to_string(o.frames) + " frames");
+    const fs::path dir = o.out / name;
+    create_output_directory(dir, "--out");
+    write_visibility_png((dir / "truth.png").string(), frames[0].truth, frames[0].receivers.mask,
+                         scored_mask(frames[0]));
+    const std::vector<DemoMethod> methods = wanted_methods(scene, o);
+    std::vector<const DemoSetting*> settings;
+    std::vector<DemoPicture> pictures;
+    const std::size_t first_row = results.rows.size();
+    for (const DemoMethod& m : methods) {
+        for (std::size_t s = 0; s < m.settings.size(); ++s) {
+            Image estimate;
+            DemoRow row = measure(ctx, m.settings[s], frames, estimate);
+            row.method = m.name;
+            row.truth_noise = scene_frames.truth_noise;
+            results.rows.push_back(row);
+            settings.push_back(&m.settings[s]);
+            if (int(s) == m.preview_setting) {
+                write_previews(dir, m.name, estimate, frames[0]);
+                pictures.push_back({m.name, m.settings[s].label});
+            }
+            progress.step(name + ": " + m.name + " " + m.settings[s].label);
+        }
+        progress.milestone(name + ": " + m.name);
+    }
+    const std::vector<FrameTimes> times = time_settings(ctx, settings, frames[0], scene_frames.timed, o.repetitions);
+    for (std::size_t i = 0; i < times.size(); ++i) results.rows[first_row + i].time = times[i];
+    progress.step(name + ": timing");
+    progress.milestone(name + ": timing, " + std::to_string(settings.size()) + " settings x " +
+                       std::to_string(o.repetitions) + " on " + frame_text(o.frame));
+    results.pictures.emplace_back(name, std::move(pictures));
+}
+
+std::string protocol_text(const DemoOptions& o)
+{
+    std::string text = "Scored on " + frame_text(o.view) + " receivers against a ground truth of " +
+                       std::to_string(o.strata * o.strata) + " rays per receiver, " + std::to_string(o.frames) +
+                       " frames for flicker; timed on " + frame_text(o.frame) + " receivers, medians of " +
+                       std::to_string(o.repetitions) + " interleaved repetitions after a warm-up.";
+    if (o.quick) text.append(" ").append(kQuickCaveat);
+    return text;
+}
+
+// The CSV, the chart, the printed table and summary, and the report.
+void write_outputs(Context& ctx, const DemoOptions& o, DemoResults& results)
+{
+    const std::string frame = frame_text(o.frame);
+    write_csv(o.out / "results.csv", results.rows, to_string(ctx.backend()), frame);
+    write_error_scale_png((o.out / "error_scale.png").string());
+    DemoReport report;
+    report.chart = draw_chart(o.out);
+    const std::vector<SceneSummary> summaries = summarize_scenes(results.rows, results.truth_noise, o.budgets_ms);
+    print_table(results.rows, frame);
+    print_summary(summaries, frame);
+    if (o.quick) std::cout << "note: " << kQuickCaveat << "\n";
+    report.machine = "penumbra demo on " + ctx.description();
+    report.protocol = protocol_text(o);
+    report.rows = &results.rows;
+    report.summaries = &summaries;
+    report.pictures = std::move(results.pictures);
+    report.frame = frame;
+    write_report(o.out, report);
+    std::cout << "wrote " << (o.out / "results.csv").string() << ", " << (o.out / "chart.png").string() << " and "
+              << (o.out / "index.html").string() << "\n";
+}
+
 }  // namespace
 
 int demo_command(const std::vector<std::string>& argv)
@@ -409,79 +512,11 @@ int demo_command(const std::vector<std::string>& argv)
     for (const std::string& w : ctx.warnings()) std::cerr << "penumbra demo: warning: " << w << "\n";
     std::cout << "penumbra demo on " << ctx.description() << "\n";
 
-    int work = 0;
-    for (const std::string& name : o.scenes) {
-        const reference::Scene scene = reference::builtin_scene(name);
-        work += o.frames + 1;  // the truths, then the timing
-        for (const DemoMethod& m : demo_methods(scene, map_size_for(scene, o)))
-            if (wanted(o.methods, m.name)) work += int(m.settings.size());
-    }
-    Progress progress(work);
-    std::vector<DemoRow> rows;
-    std::vector<std::pair<std::string, double>> noise;
-    DemoReport report;
-    for (const std::string& name : o.scenes) {
-        const reference::Scene scene = reference::builtin_scene(name);
-        const SceneFrames scene_frames = render_scene_frames(scene, o, progress);
-        const std::vector<DemoFrame>& frames = scene_frames.frames;
-        noise.emplace_back(name, scene_frames.truth_noise);
-        progress.milestone(name + ": ground truth, " + std::to_string(o.frames) + " frames");
-        const fs::path dir = o.out / name;
-        create_output_directory(dir, "--out");
-        write_visibility_png((dir / "truth.png").string(), frames[0].truth, frames[0].receivers.mask,
-                             scored_mask(frames[0]));
-        std::vector<DemoMethod> methods;
-        for (DemoMethod& m : demo_methods(scene, map_size_for(scene, o)))
-            if (wanted(o.methods, m.name)) methods.push_back(std::move(m));
-        std::vector<const DemoSetting*> settings;
-        std::vector<DemoPicture> pictures;
-        const std::size_t first_row = rows.size();
-        for (const DemoMethod& m : methods) {
-            for (std::size_t s = 0; s < m.settings.size(); ++s) {
-                Image estimate;
-                DemoRow row = measure(ctx, m.settings[s], frames, estimate);
-                row.method = m.name;
-                row.truth_noise = scene_frames.truth_noise;
-                rows.push_back(row);
-                settings.push_back(&m.settings[s]);
-                if (int(s) == m.preview_setting) {
-                    write_previews(dir, m.name, estimate, frames[0]);
-                    pictures.push_back({m.name, m.settings[s].label});
-                }
-                progress.step(name + ": " + m.name + " " + m.settings[s].label);
-            }
-            progress.milestone(name + ": " + m.name);
-        }
-        const std::vector<FrameTimes> times = time_settings(ctx, settings, frames[0], scene_frames.timed, o.repetitions);
-        for (std::size_t i = 0; i < times.size(); ++i) rows[first_row + i].time = times[i];
-        progress.step(name + ": timing");
-        progress.milestone(name + ": timing, " + std::to_string(settings.size()) + " settings x " +
-                           std::to_string(o.repetitions) + " on " + frame_text(o.frame));
-        report.pictures.emplace_back(name, std::move(pictures));
-    }
+    Progress progress(count_work(o));
+    DemoResults results;
+    for (const std::string& name : o.scenes) run_scene(ctx, o, reference::builtin_scene(name), progress, results);
     progress.finish();  // the bar's line ends before the chart's and the table's output
-    const std::string frame = frame_text(o.frame);
-    write_csv(o.out / "results.csv", rows, to_string(ctx.backend()), frame);
-    write_error_scale_png((o.out / "error_scale.png").string());
-    report.chart = draw_chart(o.out);
-    const std::vector<SceneSummary> summaries = summarize_scenes(rows, noise, o.budgets_ms);
-    print_table(rows, frame);
-    print_summary(summaries, frame);
-    report.machine = "penumbra demo on " + ctx.description();
-    report.protocol = "Scored on " + frame_text(o.view) + " receivers against a ground truth of " +
-                      std::to_string(o.strata * o.strata) + " rays per receiver, " + std::to_string(o.frames) +
-                      " frames for flicker; timed on " + frame + " receivers, medians of " +
-                      std::to_string(o.repetitions) + " interleaved repetitions after a warm-up.";
-    if (o.quick) {
-        std::cout << "note: " << kQuickCaveat << "\n";
-        report.protocol += std::string(" ") + kQuickCaveat;
-    }
-    report.rows = &rows;
-    report.summaries = &summaries;
-    report.frame = frame;
-    write_report(o.out, report);
-    std::cout << "wrote " << (o.out / "results.csv").string() << ", " << (o.out / "chart.png").string() << " and "
-              << (o.out / "index.html").string() << "\n";
+    write_outputs(ctx, o, results);
     return 0;
 }
 
