@@ -86,7 +86,7 @@ PN_BACKEND_TEST(MomentsCrossBackendTest, AgreesWithScalar)
     std::vector<Case> cases;
     for (Quantization q : {Quantization::Bits16, Quantization::Bits32}) {
         const Precision p = q == Quantization::Bits16 ? Precision::Exact : Precision::Float;
-        const std::string tag = " " + to_string(q) + "-bit";
+        const std::string tag = std::string(" ").append(to_string(q)).append("-bit");  // GCC 12 -Wrestrict, bug 105329
         for (int radius : {1, 6})
             cases.push_back({"msm r=" + std::to_string(radius) + tag,
                              [=](Context& c, Context& t) {
