@@ -1,7 +1,6 @@
 #include "demo_summary.h"
 
 #include <cstdio>
-#include <limits>
 #include <map>
 
 namespace penumbra::cli {
