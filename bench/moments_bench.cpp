@@ -10,17 +10,22 @@
 //    prepared table built once, untimed, by the best CPU backend): op is the
 //    method's name ('-' -> '_') with `_r8` for a box method (one that reads
 //    `radius`; radius 8 like vsm_r8) and also `_r0`.. `_r2` on the exact
-//    table (the small windows, issue 9); a method with a light reads the
-//    default light size, like vssm;
-//  - the build step (Method::prepare): op `<name>_table`, once per distinct
-//    build step (msm-soft shares msm's table: timed once, as msm_table).
+//    table and summed directly from the map (`precision:map`; the small
+//    windows, issue 9: the method table's build step makes no table there,
+//    docs/moment_table.md); a method with a light reads the default light
+//    size, like vssm;
+//  - the build step (Method::prepare) at radius 8: op `<name>_table`, once
+//    per distinct build step (msm's, which makes no table at small radii,
+//    and msm-soft's build the same table: msm_table, msm_soft_table).
 // Storages, as `precision:`: exact (the default limb tables), 16bit (the
 // opt-in optimized quantization, for a method that reads `quantize`) and
 // float (the legacy float tables, quantization 32); `map` for a method that
-// reads the shadow map itself (prepare_map: no table, no build case).
-// Methods that share VSM's build step (the two-moment table: vsm, vssm) are
-// bench/penumbra_bench.cpp's own cases (vsm_r8, vssm, table: three sizes,
-// beside memcpy and OpenCV) and are not registered again here.
+// reads the shadow map itself (prepare_map: no table, no build case) and for
+// a box method's small windows summed from the map (a case whose build step
+// makes a table at that radius is skipped with a message).
+// Methods of VSM's two-moment table (vsm, vssm) are bench/penumbra_bench.cpp's
+// own cases (vsm_r0..r8, vssm, table: three sizes, beside memcpy and OpenCV)
+// and are not registered again here.
 //
 // Inputs: bench/bench_inputs.h's scene (a lit ground under a grid of square
 // occluders covering 36% of the map, receivers at every texel centre between
@@ -31,6 +36,7 @@
 #include <algorithm>
 #include <exception>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -53,7 +59,8 @@ struct Storage {
 const Storage kStorages[] = {{"exact", Quantization::None, Precision::Exact},
                              {"16bit", Quantization::Bits16, Precision::Exact},
                              {"float", Quantization::Bits32, Precision::Float}};
-// A method that reads the shadow map itself (prepare_map) has no storage choice.
+// A method that reads the shadow map itself (prepare_map) has no storage
+// choice; a box method's small windows read it too (direct sums).
 const Storage kMapItself{"map", Quantization::None, Precision::Exact};
 
 bool reads(const Method& m, std::string_view option)
@@ -70,15 +77,24 @@ MethodSettings settings_for(const Storage& s, int radius)
     return settings;
 }
 
-// A method's prepared table, built once per build step and settings by the
-// best CPU backend; every backend's shade step reads it.
+// A method's prepared map, built once per build step and storage by the
+// best CPU backend; every backend's shade step reads it. A table storage
+// is built at radius 8 (a table whatever the radius of the shade step); the
+// map storage of a box method at the case's own radius, and must then hold
+// no table (throws otherwise: that radius is above the method's cut).
 const PreparedMap& prepared(const Method& m, const Storage& s, const MethodSettings& settings)
 {
-    static std::map<std::tuple<const void*, std::string>, PreparedMap> cache;
-    const auto key = std::make_tuple(reinterpret_cast<const void*>(m.prepare), std::string(s.name));
+    static std::map<std::tuple<const void*, std::string, int>, PreparedMap> cache;
+    const bool direct = &s == &kMapItself;
+    MethodSettings build = settings;
+    if (!direct) build.radius = kRadius;
+    const auto key = std::make_tuple(reinterpret_cast<const void*>(m.prepare), std::string(s.name), build.radius);
     auto it = cache.find(key);
     if (it == cache.end())
-        it = cache.emplace(key, m.prepare(context(best_cpu_backend()), depth_map(kSize), settings)).first;
+        it = cache.emplace(key, m.prepare(context(best_cpu_backend()), depth_map(kSize), build)).first;
+    if (direct && it->second.has_table())
+        throw std::runtime_error("the build step makes a table at radius " + std::to_string(build.radius) +
+                                 " (above the method's direct-sum cut)");
     return it->second;
 }
 
@@ -125,13 +141,15 @@ void build_step(benchmark::State& state, const Method& m, const MethodSettings& 
     });
 }
 
-// The storages a method takes: 16-bit only where it reads `quantize`.
+// The storages a method takes: 16-bit only where it reads `quantize`; the
+// map for a box method's small windows.
 std::vector<const Storage*> storages_of(const Method& m)
 {
     if (m.prepare == prepare_map) return {&kMapItself};
     std::vector<const Storage*> list;
     for (const Storage& s : kStorages)
         if (s.quantization != Quantization::Bits16 || reads(m, "quantize")) list.push_back(&s);
+    if (reads(m, "radius")) list.push_back(&kMapItself);
     return list;
 }
 
@@ -144,7 +162,7 @@ std::vector<std::pair<std::string, int>> shade_ops(const Method& m, const Storag
     std::vector<std::pair<std::string, int>> ops;
     if (s.quantization == Quantization::None)
         for (int r : kSmallRadii) ops.emplace_back(name + "_r" + std::to_string(r), r);
-    ops.emplace_back(name + "_r" + std::to_string(kRadius), kRadius);
+    if (&s != &kMapItself) ops.emplace_back(name + "_r" + std::to_string(kRadius), kRadius);
     return ops;
 }
 
@@ -168,9 +186,10 @@ void register_on_backends(const std::string& op, const Storage& s, Run run)
 // from the method table and the backends of this machine.
 [[maybe_unused]] const bool registered = [] {
     const Method& vsm = find_method("vsm");
+    const Method& vssm = find_method("vssm");
     std::vector<const void*> timed_builds;
     for (const Method& m : methods()) {
-        if (m.prepare == vsm.prepare) continue;  // bench/penumbra_bench.cpp's cases
+        if (m.prepare == vsm.prepare || m.prepare == vssm.prepare) continue;  // bench/penumbra_bench.cpp's cases
         for (const Storage* s : storages_of(m))
             for (const auto& [op, radius] : shade_ops(m, *s)) {
                 const MethodSettings settings = settings_for(*s, radius);
@@ -185,6 +204,7 @@ void register_on_backends(const std::string& op, const Storage& s, Run run)
         std::string op = std::string(m.name) + "_table";
         std::replace(op.begin(), op.end(), '-', '_');
         for (const Storage* s : storages_of(m)) {
+            if (s == &kMapItself) continue;  // a box method's direct sums: no table to build
             const MethodSettings settings = settings_for(*s, kRadius);
             register_on_backends(op, *s, [&m, settings](benchmark::State& st, const std::string& b, int t) {
                 build_step(st, m, settings, b, t);

@@ -200,23 +200,36 @@ void register_table(const std::string& backend, const std::vector<int>& sizes, c
 // overload that writes an existing output image (no allocation per call);
 // VSSM's output allocation is 5 to 12% of its time (VSM: 30%), so it has no such case.
 // vsm_r0 .. vsm_r2 (exact only): the small windows, which issue 9 requires to be
-// no slower than before it (their radius is the digit after "vsm_r").
+// no slower than before it (their radius is the digit after "vsm_r"), on the
+// exact table and summed directly from the map (`precision:map`, no table:
+// what `penumbra shade` runs at these radii, docs/moment_table.md).
 void register_lookups(const std::string& backend, const std::vector<int>& sizes, const std::vector<int>& threads_list)
 {
     for (const std::string op : {"vsm_r0", "vsm_r1", "vsm_r2", "vsm_r8", "vsm_r8_into", "vssm"})
-        for (Precision precision : {Precision::Float, Precision::Exact})
+        for (int source : {0, 1, 2})  // float table, exact table, the map
             for (int size : sizes)
                 for (int threads : threads_list) {
                     const bool small = op.size() == 6 && op.compare(0, 5, "vsm_r") == 0 && op != "vsm_r8";
-                    if (small && precision == Precision::Float) continue;
+                    const bool direct = source == 2;
+                    const Precision precision = source == 0 ? Precision::Float : Precision::Exact;
+                    if ((small && precision == Precision::Float) || (direct && !small)) continue;
                     const int radius = op.compare(0, 5, "vsm_r") == 0 ? op[5] - '0' : kVsmRadius;
-                    const std::string name =
-                        op + "/backend:" + backend + "/precision:" + precision_name(precision) + suffix(size, threads);
+                    const std::string name = op + "/backend:" + backend + "/precision:" +
+                                             (direct ? "map" : precision_name(precision)) + suffix(size, threads);
                     auto fn = [=](benchmark::State& state) {
                         Context* ctx = context_or_skip(state, backend);
                         if (!ctx) return;
-                        const MomentTable& table = moment_table(size, precision);
                         const Image& rx = receivers(size);
+                        if (direct) {
+                            const Image& depth = depth_map(size);
+                            run_case(state, name, threads, [&] {
+                                Image out = vsm(*ctx, depth, rx, VsmOptions{radius});
+                                benchmark::DoNotOptimize(out.plane(0));
+                            });
+                            set_rates(state, double(size) * size, 0);
+                            return;
+                        }
+                        const MomentTable& table = moment_table(size, precision);
                         if (op == "vsm_r8_into") {
                             Image out(size, size, 1);
                             run_case(state, name, threads, [&] {

@@ -60,8 +60,11 @@ PN_FN Receiver load_checked_receiver(PN_GLOBAL const float* receivers, pn_dims d
  * writes the strip's visibility. Macros, because an argument list cannot be a
  * function; each entry keeps its own `PN_KERNEL void NAME_##variant(` line,
  * which the OpenCL embed step reads (cmake/embed_kernels.cmake). */
-#define PN_LOOKUP_ARGS(T, Params)                                                                        \
-    PN_GLOBAL const T* table, PN_GLOBAL const float* receivers, PN_GLOBAL float* out, PN_GLOBAL int* bad_rows, \
+#define PN_LOOKUP_ARGS(T, Params) PN_LOOKUP_ARGS_OF(T, table, Params)
+/* The same with the source named: `depth` for the entries that read the
+ * shadow map itself (the direct window sums, kernels/box_window.h). */
+#define PN_LOOKUP_ARGS_OF(T, source, Params)                                                              \
+    PN_GLOBAL const T* source, PN_GLOBAL const float* receivers, PN_GLOBAL float* out, PN_GLOBAL int* bad_rows, \
         const Params p, PN_PIXEL_ARGS
 #define PN_LOOKUP_BEGIN(r)                    \
     PN_PIXEL_BEGIN(p.out.width, p.out.height); \

@@ -34,6 +34,7 @@
     X(moment_table, sat_join_bands_exact, pixel, SatParams, (PN_INOUT(uint), PN_IN(uint)))               \
     X(chebyshev, vsm_float, pixel, ChebyshevParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
     X(chebyshev, vsm_exact, pixel, ChebyshevParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))  \
+    X(chebyshev, vsm_direct, pixel, ChebyshevParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
     X(chebyshev, vssm_float, pixel, ChebyshevParams,                                                     \
       (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))                                             \
     X(chebyshev, vssm_exact, pixel, ChebyshevParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
@@ -49,10 +50,12 @@
     X(moments, encoded_bands_exact, task, EncodedSatParams, (PN_IN(float), PN_OUT(uint), PN_OUT(uint), PN_OUT(int)))   \
     X(moments, msm_float, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))       \
     X(moments, msm_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))        \
+    X(moments, msm_direct, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
     X(moments, msm_soft_float, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))  \
     X(moments, msm_soft_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))   \
     X(moments, evsm_float, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
     X(moments, evsm_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
+    X(moments, evsm_direct, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))     \
     X(pcf, pcf, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))                   \
     X(pcf, pcf_gather, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))            \
     X(pcf, pcf_gauss, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \

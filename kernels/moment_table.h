@@ -100,21 +100,29 @@ PN_FN void sat_block_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
 
 /* The values of one strip (double, from the float32 depth clamped into
  * [0, 1]): z, z^2 (, z^3, z^4), or EVSM's warps w+ = e^{c+ (z - 1)}, w+^2
- * (, |w-| = e^{-c- z}, w-^2) (kernels/exponential_warp.h). */
-PN_FN void sat_texel_values(pn_float z, const SatParams p, int moments, pn_double* v)
+ * (, |w-| = e^{-c- z}, w-^2) (kernels/exponential_warp.h). `encoding` is
+ * PN_TABLE_POWERS or PN_TABLE_EVSM. The table build and the direct window
+ * sums (kernels/box_window.h) both take their values from here, so that a
+ * window summed either way sums the same doubles. */
+PN_FN void texel_values(pn_float z, int encoding, float c_positive, float c_negative, int moments, pn_double* v)
 {
     const pn_double d = pn_to_double(pn_clamp(z, 0.0f, 1.0f));
-    if (p.encoding == PN_TABLE_EVSM) {
-        v[0] = pn_dexp((double)p.exponent_positive * (d - 1.0));
+    if (encoding == PN_TABLE_EVSM) {
+        v[0] = pn_dexp((double)c_positive * (d - 1.0));
         v[1] = v[0] * v[0];
         if (moments == 4) {
-            v[2] = pn_dexp(-(double)p.exponent_negative * d);
+            v[2] = pn_dexp(-(double)c_negative * d);
             v[3] = v[2] * v[2];
         }
         return;
     }
     v[0] = d;
     for (int k = 1; k < moments; ++k) v[k] = v[k - 1] * d;
+}
+
+PN_FN void sat_texel_values(pn_float z, const SatParams p, int moments, pn_double* v)
+{
+    texel_values(z, p.encoding, p.exponent_positive, p.exponent_negative, moments, v);
 }
 
 /* The `limbs` 16-bit limbs of v in [0, 1] rounded to 16 limbs bits, most

@@ -357,4 +357,15 @@ PN_KERNEL void msm_##variant(PN_LOOKUP_ARGS(T, MomentParams))                   
 }
 PN_TABLE_VARIANTS(PN_MSM_KERNEL)
 
+/* The same window's means of z .. z^4 summed directly from the depth map
+ * (kernels/box_window.h), held to the exact table's precision (they are at
+ * least as close to the float32 depths' own moments). */
+PN_KERNEL void msm_direct(PN_LOOKUP_ARGS_OF(float, depth, MomentParams))
+{
+    PN_BOX_LOOKUP_BEGIN(r, w);
+    pn_double mean[4];
+    direct_box_means(depth, p.table, w, p.radius, PN_TABLE_POWERS, 0.0f, 0.0f, 4, mean);
+    PN_LOOKUP_STORE(msm_visibility(msm_moments_from_means(mean, PN_MOMENTS_POWER), r.z, msm_exact_precision(p), p));
+}
+
 #endif

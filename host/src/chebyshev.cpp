@@ -13,9 +13,8 @@
 namespace penumbra {
 namespace {
 
-void check_receivers(const std::string& op, const MomentTable& table, const Image& receivers)
+void check_receivers(const std::string& op, const Image& receivers)
 {
-    require(!table.empty(), op, "the moment table is empty; build it with build_moment_table()");
     require(!receivers.empty(), op, "receivers", "the receivers image is empty (0 pixels)");
     require(receivers.channels() == 3, op,
             "receivers must have 3 channels (u, v, z), got " + std::to_string(receivers.channels()));
@@ -29,16 +28,19 @@ void check_filter(const std::string& op, float min_variance, float bleed)
     check(kBleedRange, bleed, op);
 }
 
-ChebyshevParams base_params(const MomentTable& table, const Image& receivers, const Image& out,
-                            float min_variance, float bleed)
+void check_table(const std::string& op, const MomentTable& table)
+{
+    require(!table.empty(), op, "the moment table is empty; build it with build_moment_table()");
+}
+
+// `table` set by the caller: the table's dims, or the map's (direct sums).
+ChebyshevParams base_params(const Image& receivers, const Image& out, float min_variance, float bleed)
 {
     ChebyshevParams p{};
-    p.table = detail::dims_of(table);
     p.receivers = detail::dims_of(receivers);
     p.out = detail::dims_of(out);
     p.min_variance = min_variance;
     p.bleed = bleed;
-    p.limbs = table.limbs();
     return p;
 }
 
@@ -52,28 +54,47 @@ void check_output(const std::string& op, const Image& receivers, const Image& ou
 }  // namespace
 
 PN_ALLOCATING_VISIBILITY(vsm, MomentTable, VsmOptions)
+PN_ALLOCATING_VISIBILITY(vsm, Image, VsmOptions)
 PN_ALLOCATING_VISIBILITY(vssm, MomentTable, VssmOptions)
 
 void vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options, Image& out)
 {
     const std::string op = "vsm";
-    check_receivers(op, table, receivers);
+    check_table(op, table);
+    check_receivers(op, receivers);
     check_filter(op, options.min_variance, options.bleed);
     detail::check_radius(op, options.radius, table.precision());
     check_output(op, receivers, out);
-    ChebyshevParams p = base_params(table, receivers, out, options.min_variance, options.bleed);
+    ChebyshevParams p = base_params(receivers, out, options.min_variance, options.bleed);
+    p.table = detail::dims_of(table);
+    p.limbs = table.limbs();
     p.radius = options.radius;
     detail::checked_table_lookup<KernelId::vsm_float, KernelId::vsm_exact>(context.impl(), op, table, receivers, p,
                                                                            out);
 }
 
+void vsm(Context& context, const Image& depth, const Image& receivers, const VsmOptions& options, Image& out)
+{
+    const std::string op = "vsm";
+    check_receivers(op, receivers);
+    check_filter(op, options.min_variance, options.bleed);
+    detail::check_radius(op, options.radius, Precision::Exact);
+    check_output(op, receivers, out);
+    ChebyshevParams p = base_params(receivers, out, options.min_variance, options.bleed);
+    p.radius = options.radius;
+    detail::checked_direct_lookup<KernelId::vsm_direct>(context.impl(), op, depth, receivers, p, out);
+}
+
 void vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options, Image& out)
 {
     const std::string op = "vssm";
-    check_receivers(op, table, receivers);
+    check_table(op, table);
+    check_receivers(op, receivers);
     check_filter(op, options.min_variance, options.bleed);
     check_output(op, receivers, out);
-    ChebyshevParams p = base_params(table, receivers, out, options.min_variance, options.bleed);
+    ChebyshevParams p = base_params(receivers, out, options.min_variance, options.bleed);
+    p.table = detail::dims_of(table);
+    p.limbs = table.limbs();
     p.light_size = options.light_size;
     p.max_radius = detail::checked_search_radius(op, options.light_size, table);
     detail::checked_table_lookup<KernelId::vssm_float, KernelId::vssm_exact>(context.impl(), op, table, receivers, p,

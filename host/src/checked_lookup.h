@@ -1,8 +1,9 @@
 // The host side of every per-receiver lookup (detail::receiver_lookup,
 // host/backend/backend.h): the kernels flag rows holding a NaN or infinite
 // receiver, and the first one is then reported as the operation's Error (the
-// output is left unspecified). Shared by every lookup-shaped family
-// (chebyshev.cpp, moments.cpp, ...).
+// output is left unspecified); the check of a shadow map an entry reads
+// itself. Shared by every lookup-shaped family (chebyshev.cpp, moments.cpp,
+// pcf.cpp, ...).
 #pragma once
 
 #include <algorithm>
@@ -22,6 +23,23 @@ void checked_lookup(const std::string& op, const Image& receivers, Lookup&& look
     lookup(bad_rows.data());
     if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end())
         require_finite(receivers, op, "the receivers image", "receivers");
+}
+
+// A shadow map an entry reads itself: one channel of depths in [0, 1]
+// (Error(InvalidArgument), parameter "depth", naming the first bad texel).
+void check_shadow_map(const Image& map, const std::string& op);
+
+// A box method's window summed directly from the map (the `_direct` entries,
+// kernels/box_window.h): the map checked, its dims as the Params' `table`
+// (the source's dims), then the checked lookup.
+template <KernelId K>
+void checked_direct_lookup(BackendImpl& backend, const std::string& op, const Image& map, const Image& receivers,
+                           typename KernelTraits<K>::Params params, Image& out)
+{
+    check_shadow_map(map, op);
+    params.table = dims_of(map);
+    checked_lookup(op, receivers,
+                   [&](int* bad_rows) { receiver_lookup<K>(backend, map, receivers, params, out, bad_rows); });
 }
 
 // A moment table's lookup (Float / Exact twins), checked.

@@ -9,16 +9,35 @@
 namespace penumbra {
 namespace {
 
+// Box methods at small radii in the default storage: no table; the shade
+// step sums each window from the map (the `_direct` entries,
+// kernels/box_window.h), which is faster there than a table's lookup and
+// computes the same method (docs/moment_table.md, "Direct sums for small
+// windows", has the measured cuts). The shade steps read the table when the
+// build step made one.
+bool direct_window(const MethodSettings& s, int max_radius)
+{
+    return s.radius <= max_radius && s.precision == Precision::Exact && s.quantization == Quantization::None;
+}
+
 // Chebyshev methods: the two-moment table (exact, the default).
 PreparedMap prepare_moment_table(Context& context, const Image& map, const MethodSettings& s)
 {
     return PreparedMap(map, build_moment_table(context, map, 2, s.precision));
 }
 
+PreparedMap prepare_vsm(Context& context, const Image& map, const MethodSettings& s)
+{
+    if (direct_window(s, kVsmDirectMaxRadius)) return PreparedMap(map);
+    return prepare_moment_table(context, map, s);
+}
+
 void shade_vsm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                Image& out)
 {
-    vsm(context, prepared.table<MomentTable>(), receivers, VsmOptions{s.radius, s.min_variance, s.bleed}, out);
+    const VsmOptions options{s.radius, s.min_variance, s.bleed};
+    if (!prepared.has_table()) return vsm(context, prepared.map(), receivers, options, out);
+    vsm(context, prepared.table<MomentTable>(), receivers, options, out);
 }
 
 void shade_vssm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
@@ -33,10 +52,18 @@ PreparedMap prepare_msm_table(Context& context, const Image& map, const MethodSe
     return PreparedMap(map, build_msm_table(context, map, s.quantization, s.precision));
 }
 
+PreparedMap prepare_msm(Context& context, const Image& map, const MethodSettings& s)
+{
+    if (direct_window(s, kMsmDirectMaxRadius)) return PreparedMap(map);
+    return prepare_msm_table(context, map, s);
+}
+
 void shade_msm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                Image& out)
 {
-    msm(context, prepared.table<MsmTable>(), receivers, MsmOptions{s.radius, s.moment_bias, s.depth_bias}, out);
+    const MsmOptions options{s.radius, s.moment_bias, s.depth_bias};
+    if (!prepared.has_table()) return msm(context, prepared.map(), receivers, options, out);
+    msm(context, prepared.table<MsmTable>(), receivers, options, out);
 }
 
 void shade_msm_soft(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
@@ -48,17 +75,25 @@ void shade_msm_soft(Context& context, const PreparedMap& prepared, const Image& 
 
 // EVSM2 keeps the positive warp only (2 channels), EVSM4 both (4).
 template <int Channels>
-PreparedMap prepare_evsm_table(Context& context, const Image& map, const MethodSettings& s)
+EvsmWarp evsm_warp(const MethodSettings& s)
 {
-    const EvsmWarp warp{Channels, s.positive_exponent, s.negative_exponent, s.quantization};
-    return PreparedMap(map, build_evsm_table(context, map, warp, s.precision));
+    return EvsmWarp{Channels, s.positive_exponent, s.negative_exponent, s.quantization};
 }
 
+template <int Channels>
+PreparedMap prepare_evsm(Context& context, const Image& map, const MethodSettings& s)
+{
+    if (direct_window(s, kEvsmDirectMaxRadius)) return PreparedMap(map);
+    return PreparedMap(map, build_evsm_table(context, map, evsm_warp<Channels>(s), s.precision));
+}
+
+template <int Channels>
 void shade_evsm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                 Image& out)
 {
-    evsm(context, prepared.table<EvsmTable>(), receivers,
-         EvsmOptions{s.radius, s.min_variance, s.bleed, s.depth_bias.value_or(0.0f)}, out);
+    const EvsmOptions options{s.radius, s.min_variance, s.bleed, s.depth_bias.value_or(0.0f)};
+    if (!prepared.has_table()) return evsm(context, prepared.map(), evsm_warp<Channels>(s), receivers, options, out);
+    evsm(context, prepared.table<EvsmTable>(), receivers, options, out);
 }
 
 // The percentage-closer family reads the map itself (prepare_map).
@@ -139,17 +174,17 @@ const std::vector<Method>& methods()
 {
     static const std::vector<Method> table = {
         {"vsm", "variance shadow maps: Chebyshev bound over a box window (Donnelly & Lauritzen 2006)",
-         {"radius", "min-variance", "bleed"}, prepare_moment_table, shade_vsm},
+         {"radius", "min-variance", "bleed"}, prepare_vsm, shade_vsm},
         {"vssm", "variance soft shadow maps: blocker search sized by the light (Yang et al. 2010)",
          {"light-size", "min-variance", "bleed"}, prepare_moment_table, shade_vssm},
         {"msm", "moment shadow maps: four moments, Hamburger bound (Peters & Klein 2015)",
-         {"radius", "moment-bias", "depth-bias", "quantize"}, prepare_msm_table, shade_msm},
+         {"radius", "moment-bias", "depth-bias", "quantize"}, prepare_msm, shade_msm},
         {"msm-soft", "moment soft shadows: blocker search on four moments (Peters et al. 2016)",
          {"light-size", "moment-bias", "depth-bias", "quantize"}, prepare_msm_table, shade_msm_soft},
         {"evsm2", "exponential variance shadow maps, positive warp (Lauritzen & McCool 2008)",
-         {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, prepare_evsm_table<2>, shade_evsm},
+         {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, prepare_evsm<2>, shade_evsm<2>},
         {"evsm4", "exponential variance shadow maps, both warps (Lauritzen & McCool 2008)",
-         {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, prepare_evsm_table<4>, shade_evsm},
+         {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, prepare_evsm<4>, shade_evsm<4>},
         {"pcf", "percentage-closer filtering over a box window (Reeves et al. 1987)",
          {"radius", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale", "bias-derivatives"},
          prepare_map, shade_pcf},

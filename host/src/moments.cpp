@@ -117,12 +117,20 @@ float checked_bias(const std::string& op, const ParameterRange& range, float val
     return value;
 }
 
-MomentParams base_params(const MomentTable& sums, const Image& receivers, const Image& out)
+// The parameters of a lookup whose source is the map itself (the direct
+// sums: checked_direct_lookup sets `table` to the map's dims).
+MomentParams base_params(const Image& receivers, const Image& out)
 {
     MomentParams p{};
-    p.table = detail::dims_of(sums);
     p.receivers = detail::dims_of(receivers);
     p.out = detail::dims_of(out);
+    return p;
+}
+
+MomentParams base_params(const MomentTable& sums, const Image& receivers, const Image& out)
+{
+    MomentParams p = base_params(receivers, out);
+    p.table = detail::dims_of(sums);
     p.limbs = sums.limbs();
     return p;
 }
@@ -232,6 +240,7 @@ EvsmTable build_evsm_table(Context& context, const Image& depth, const EvsmWarp&
 // ---- MSM -----------------------------------------------------------------------
 
 PN_ALLOCATING_VISIBILITY(msm, MsmTable, MsmOptions)
+PN_ALLOCATING_VISIBILITY(msm, Image, MsmOptions)
 PN_ALLOCATING_VISIBILITY(msm_soft, MsmTable, MsmSoftOptions)
 
 void msm(Context& context, const MsmTable& table, const Image& receivers, const MsmOptions& options, Image& out)
@@ -245,6 +254,17 @@ void msm(Context& context, const MsmTable& table, const Image& receivers, const 
     p.radius = options.radius;
     detail::checked_table_lookup<KernelId::msm_float, KernelId::msm_exact>(context.impl(), op, table.sums, receivers, p,
                                                                            out);
+}
+
+void msm(Context& context, const Image& depth, const Image& receivers, const MsmOptions& options, Image& out)
+{
+    const std::string op = "msm";
+    check_receivers(op, receivers, out);
+    detail::check_radius(op, options.radius, Precision::Exact);
+    MomentParams p = base_params(receivers, out);
+    set_msm_biases(p, op, Quantization::None, options.moment_bias, options.depth_bias);
+    p.radius = options.radius;
+    detail::checked_direct_lookup<KernelId::msm_direct>(context.impl(), op, depth, receivers, p, out);
 }
 
 void msm_soft(Context& context, const MsmTable& table, const Image& receivers, const MsmSoftOptions& options,
@@ -266,26 +286,66 @@ void msm_soft(Context& context, const MsmTable& table, const Image& receivers, c
 
 PN_ALLOCATING_VISIBILITY(evsm, EvsmTable, EvsmOptions)
 
-void evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options, Image& out)
+namespace {
+
+// The lookup options of evsm() and the warp's exponents, both sources alike.
+void set_evsm_options(MomentParams& p, const std::string& op, const EvsmOptions& options, int channels,
+                      float positive, float negative, Quantization q)
 {
-    const std::string op = "evsm";
-    require(table.channels == 2 || table.channels == 4, op,
-            "the table's channels must be 2 or 4, got " + std::to_string(table.channels));
-    check_table(op, table.sums, table.channels);
-    check_receivers(op, receivers, out);
-    detail::check_radius(op, options.radius, table.sums.precision());
     check(kMinVarianceRange, options.min_variance, op);
     check(kBleedRange, options.bleed, op);
-    MomentParams p = base_params(table.sums, receivers, out);
-    p.channels = table.channels;
-    p.exponent_positive = checked_exponent(op, table.positive, table.quantization, true);
-    p.exponent_negative = table.channels == 4 ? checked_exponent(op, table.negative, table.quantization, false) : 0.0f;
+    p.channels = channels;
+    p.exponent_positive = checked_exponent(op, positive, q, true);
+    p.exponent_negative = channels == 4 ? checked_exponent(op, negative, q, false) : 0.0f;
     p.radius = options.radius;
     p.min_variance = options.min_variance;
     p.bleed = options.bleed;
     p.depth_bias = checked_bias(op, kDepthBiasRange, options.depth_bias);
+}
+
+void check_evsm_channels(const std::string& op, int channels, const char* what)
+{
+    require(channels == 2 || channels == 4, op,
+            std::string(what) + " channels must be 2 or 4, got " + std::to_string(channels));
+}
+
+}  // namespace
+
+void evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options, Image& out)
+{
+    const std::string op = "evsm";
+    check_evsm_channels(op, table.channels, "the table's");
+    check_table(op, table.sums, table.channels);
+    check_receivers(op, receivers, out);
+    detail::check_radius(op, options.radius, table.sums.precision());
+    MomentParams p = base_params(table.sums, receivers, out);
+    set_evsm_options(p, op, options, table.channels, table.positive, table.negative, table.quantization);
     detail::checked_table_lookup<KernelId::evsm_float, KernelId::evsm_exact>(context.impl(), op, table.sums, receivers,
                                                                              p, out);
+}
+
+Image evsm(Context& context, const Image& depth, const EvsmWarp& warp, const Image& receivers,
+           const EvsmOptions& options)
+{
+    return detail::visibility_output(receivers,
+                                     [&](Image& out) { evsm(context, depth, warp, receivers, options, out); });
+}
+
+void evsm(Context& context, const Image& depth, const EvsmWarp& warp, const Image& receivers,
+          const EvsmOptions& options, Image& out)
+{
+    const std::string op = "evsm";
+    check_evsm_channels(op, warp.channels, "the warp's");
+    require(warp.quantization == Quantization::None, op,
+            "direct window sums take the warps in double (quantization none); a quantized storage needs its table "
+            "(build_evsm_table)");
+    check_receivers(op, receivers, out);
+    detail::check_radius(op, options.radius, Precision::Exact);
+    MomentParams p = base_params(receivers, out);
+    const float positive = warp.positive.value_or(default_evsm_exponent(Quantization::None, true));
+    const float negative = warp.negative.value_or(default_evsm_exponent(Quantization::None, false));
+    set_evsm_options(p, op, options, warp.channels, positive, negative, Quantization::None);
+    detail::checked_direct_lookup<KernelId::evsm_direct>(context.impl(), op, depth, receivers, p, out);
 }
 
 }  // namespace penumbra

@@ -38,17 +38,6 @@ void check_family_receivers(const Image& receivers, const DepthBias& b, const st
             "receivers must have channels u, v, z, got " + std::to_string(receivers.channels()));
     if (channels) require_finite(receivers, op, "the receivers image", "receivers");
 }
-
-// The map is scanned for values outside [0, 1] up front: the kernels do not
-// flag them (a NaN depth would silently count as neither blocker nor lit).
-void check_family_map(const Image& map, const std::string& op)
-{
-    require(!map.empty(), op, "depth", "the shadow map is empty (0 texels)");
-    require(map.channels() == 1, op, "depth",
-            "the shadow map must have one channel (depth), got " + std::to_string(map.channels()));
-    require_unit_depths(map, op);
-}
-
 }  // namespace detail
 
 static_assert(kPcfMaxGrid == PN_PCF_MAX_GRID && kPcfGridRange.high == PN_PCF_MAX_GRID);

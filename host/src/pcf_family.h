@@ -28,7 +28,6 @@ inline bool reads_derivatives(const DepthBias& b) { return b.mode != BiasMode::C
 // In pcf.cpp. Each throws Error(InvalidArgument) naming the parameter.
 void check_family_bias(const DepthBias& b, const std::string& op);
 void check_family_receivers(const Image& receivers, const DepthBias& b, const std::string& op);
-void check_family_map(const Image& map, const std::string& op);
 
 // Checks the map, the bias, the receivers and `out` (1 channel, the
 // receivers' size); prepares the receivers (their derivative planes when the
@@ -38,7 +37,7 @@ template <KernelId K, class Params>
 void family_lookup(Context& context, const std::string& op, const Image& map, const Image& receivers,
                    const DepthBias& bias, Params p, Image& out)
 {
-    check_family_map(map, op);
+    check_shadow_map(map, op);
     check_family_bias(bias, op);
     check_family_receivers(receivers, bias, op);
     require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), op,

@@ -1,8 +1,10 @@
 // LookupSource and the refusal of a kernel that is no lookup
 // (host/backend/backend.h): the parts of the generic per-receiver lookup that
-// both backends share.
+// both backends share; the check of a shadow map a lookup reads itself
+// (checked_lookup.h).
 #include <string>
 
+#include "checked_lookup.h"
 #include "host/backend/backend.h"
 #include "penumbra/error.h"
 
@@ -31,6 +33,17 @@ const std::uint32_t* LookupSource::origin<std::uint32_t>(KernelId kernel) const
 {
     if (!table_ || table_->precision() != Precision::Exact) wrong_source(kernel, "an exact moment table");
     return table_->exact_origin();
+}
+
+// The map is scanned for values outside [0, 1] up front: the kernels do not
+// flag them (a NaN depth would silently count as neither blocker nor lit in
+// a percentage-closer test, and the direct sums clamp it).
+void check_shadow_map(const Image& map, const std::string& op)
+{
+    require(!map.empty(), op, "depth", "the shadow map is empty (0 texels)");
+    require(map.channels() == 1, op, "depth",
+            "the shadow map must have one channel (depth), got " + std::to_string(map.channels()));
+    require_unit_depths(map, op);
 }
 
 void throw_not_a_lookup(KernelId kernel)

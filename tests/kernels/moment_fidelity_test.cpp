@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/chebyshev.h"
 #include "penumbra/moment_table.h"
 #include "penumbra/moments.h"
 #include "support/backends.h"
@@ -160,15 +161,26 @@ bool light_accepted(const Case& c, float light)
     return light * 0.5f * float(std::max(c.map.width(), c.map.height())) <= float(kExactMaxRadius - 1);
 }
 
-// Visits every method of a case with the library's runs of its settings.
+// The direct window sums are run at every case's radii up to 8: 0, 1, 2 and
+// 3 (the cuts of penumbra/chebyshev.h and moments.h and beyond them: the
+// same method at any radius) and 8; the widest, 127, would be 65025 taps per
+// receiver and says nothing more.
+constexpr int kDirectMaxTestedRadius = 8;
+static_assert(kVsmDirectMaxRadius < kDirectMaxTestedRadius && kMsmDirectMaxRadius < kDirectMaxTestedRadius &&
+              kEvsmDirectMaxRadius < kDirectMaxTestedRadius);
+
+// Visits every method of a case with the library's runs of its settings in `mode`.
 template <class Visit>
 void for_each_run(Context& ctx, Mode mode, const Case& c, Visit visit)
 {
     for (Method m : kMethods) {
-        if (mode == Mode::Msm16 && m != Method::Msm && m != Method::MsmSoft) continue;
+        const std::vector<Mode> modes = modes_of(m);
+        if (std::find(modes.begin(), modes.end(), mode) == modes.end()) continue;
         std::vector<Setting> settings;
         for (Setting s : is_soft(m) ? c.soft : c.box)
-            if (!is_soft(m) || light_accepted(c, s.light_size)) settings.push_back(s);
+            if ((!is_soft(m) || light_accepted(c, s.light_size)) &&
+                (mode != Mode::Direct || s.radius <= kDirectMaxTestedRadius))
+                settings.push_back(s);
         StoredMoments stored;
         const std::vector<LibraryRun> runs = run_library(ctx, m, mode, c.map, c.receivers, settings, &stored);
         for (std::size_t i = 0; i < runs.size(); ++i) visit(m, settings[i], runs[i]);
@@ -260,6 +272,26 @@ PN_BACKEND_TEST(MomentFidelity, DefaultModeWithinToleranceOfTheFloat64Method)
         });
 }
 
+// The box methods' windows summed directly from the map (no table; what
+// `penumbra shade` runs at small radii): the same rule on the same cases,
+// the map borders (receivers at every texel), odd sizes and the one-depth,
+// two-depth and 0-and-1 windows included.
+PN_BACKEND_TEST(MomentFidelity, DirectSumsWithinToleranceOfTheFloat64Method)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    int runs = 0;
+    for (const Case& c : cases())
+        for_each_run(ctx, Mode::Direct, c, [&](Method m, Setting s, const LibraryRun& run) {
+            ++runs;
+            const Tally t = judge_all(m, c.map, c.receivers, run.out, run.params, 5, &references(c, m, s, run.params));
+            EXPECT_EQ(t.failed, 0) << method_name(m) << " (direct sums) on " << c.name << ", " << setting_name(m, s)
+                                   << ": " << t.failed << " of " << t.receivers << " receivers fail the rule (worst "
+                                   << t.worst << ", " << t.ill << " ill-conditioned)\n"
+                                   << t.first_failures;
+        });
+    EXPECT_GT(runs, 0);
+}
+
 // The opt-in I3D 2015 16-bit quantization: the arithmetic after it against
 // the float64 method on its dequantized moments (its quantization error
 // against the input depths is measured by bench/moment_fidelity, not held to
@@ -325,20 +357,22 @@ PN_BACKEND_TEST(MomentAgreement, EveryBackendAgreesWithScalarOnTheFidelityCases)
     Context& scalar = testing::scalar_oracle(backend);
     std::map<Method, double> worst;
     std::map<Method, long> differing, total;
-    for (const Case& c : cases()) {
-        std::vector<Image> baseline;
-        for_each_run(scalar, Mode::Default, c, [&](Method, Setting, const LibraryRun& run) { baseline.push_back(run.out); });
-        std::size_t next = 0;
-        for_each_run(ctx, Mode::Default, c, [&](Method m, Setting, const LibraryRun& run) {
-            const Image& b = baseline[next++];
-            for (int i = 0; i < run.out.width(); ++i) {
-                const double d = std::fabs(double(run.out.at(0, i, 0)) - double(b.at(0, i, 0)));
-                worst[m] = std::max(worst[m], d);
-                differing[m] += d != 0.0;
-                ++total[m];
-            }
-        });
-    }
+    for (const Case& c : cases())
+        for (Mode mode : {Mode::Default, Mode::Direct}) {
+            std::vector<Image> baseline;
+            for_each_run(scalar, mode, c,
+                         [&](Method, Setting, const LibraryRun& run) { baseline.push_back(run.out); });
+            std::size_t next = 0;
+            for_each_run(ctx, mode, c, [&](Method m, Setting, const LibraryRun& run) {
+                const Image& b = baseline[next++];
+                for (int i = 0; i < run.out.width(); ++i) {
+                    const double d = std::fabs(double(run.out.at(0, i, 0)) - double(b.at(0, i, 0)));
+                    worst[m] = std::max(worst[m], d);
+                    differing[m] += d != 0.0;
+                    ++total[m];
+                }
+            });
+        }
     for (Method m : kMethods) {
         std::printf("%s vs scalar, %s: max |diff| %.3g, %ld of %ld receivers differ\n", backend.c_str(),
                     method_name(m).c_str(), worst[m], differing[m], total[m]);

@@ -89,12 +89,16 @@ LookupRun run_of(const MomentTable& table, typename detail::KernelTraits<K>::Par
     };
 }
 
-// A lookup of the raw depth map (the percentage-closer family reads no table).
+// A lookup of the raw depth map: the percentage-closer family reads no table
+// (its Params' `depth` holds the map's dims), nor do the box methods' windows
+// summed from the map (the `_direct` entries: `table` holds them, as
+// checked_direct_lookup sets it).
 template <KernelId K>
-LookupRun map_run_of(const Image& map, typename detail::KernelTraits<K>::Params p)
+LookupRun map_run_of(const Image& map, typename detail::KernelTraits<K>::Params p,
+                     pn_dims detail::KernelTraits<K>::Params::*map_dims)
 {
-    return [&map, p](Context& context, const Image& receivers, Image& out) mutable {
-        p.depth = detail::dims_of(map);
+    return [&map, p, map_dims](Context& context, const Image& receivers, Image& out) mutable {
+        p.*map_dims = detail::dims_of(map);
         p.receivers = detail::dims_of(receivers);
         p.out = detail::dims_of(out);
         std::vector<int> bad_rows(std::size_t(receivers.height()), 0);
@@ -110,6 +114,7 @@ LookupRun lookup_case(const Sources& s)
     using Params = typename detail::KernelTraits<K>::Params;
     constexpr bool exact = std::is_same_v<detail::LookupSourceOf<K>, std::uint32_t>;
     const std::string_view name = detail::kernel_name(K);
+    const bool direct = name.ends_with("_direct");
     if constexpr (std::is_same_v<Params, ChebyshevParams>) {
         const MomentTable& table = exact ? s.chebyshev_exact : s.chebyshev_float;
         ChebyshevParams p{};
@@ -118,25 +123,28 @@ LookupRun lookup_case(const Sources& s)
         p.radius = 1;
         p.light_size = 0.2f;
         p.max_radius = exact ? kExactMaxRadius - 1 : 9;
+        if (name == "vsm_direct") return map_run_of<K>(depth_map(), p, &Params::table);
         if (name.starts_with("vsm_") || name.starts_with("vssm_")) return run_of<K>(table, p);
     } else if constexpr (std::is_same_v<Params, MomentParams>) {
         MomentParams p{};
         p.radius = 1;
         if (name.starts_with("evsm_")) {
-            const EvsmTable& t = exact ? s.evsm_exact : s.evsm_float;
+            const EvsmTable& t = exact || direct ? s.evsm_exact : s.evsm_float;
             p.channels = 4;
             p.exponent_positive = t.positive;
             p.exponent_negative = t.negative;
             p.min_variance = kDefaultMinVariance;
+            if (direct) return map_run_of<K>(depth_map(), p, &Params::table);
             return run_of<K>(t.sums, p);
         }
-        const Quantization q = exact ? Quantization::None : Quantization::Bits32;
+        const Quantization q = exact || direct ? Quantization::None : Quantization::Bits32;
         p.storage = PN_MOMENTS_POWER;
         p.moment_bias = default_moment_bias(q);
         p.depth_bias = default_depth_bias(q);
-        p.pivot_floor = exact ? 0x1p-45f : 0x1p-22f;
+        p.pivot_floor = exact || direct ? 0x1p-45f : 0x1p-22f;
         p.light_size = 0.2f;
         p.max_radius = exact ? kExactMaxRadius - 1 : 9;
+        if (name == "msm_direct") return map_run_of<K>(depth_map(), p, &Params::table);
         if (name.starts_with("msm_")) return run_of<K>((exact ? s.msm_exact : s.msm_float).sums, p);
     } else if constexpr (std::is_same_v<Params, PcfParams>) {
         PcfParams p{};
@@ -147,7 +155,7 @@ LookupRun lookup_case(const Sources& s)
         p.taps = 16;
         p.disc_radius = 2.0f;
         p.rotate = 1;
-        if (name.starts_with("pcf")) return map_run_of<K>(depth_map(), p);
+        if (name.starts_with("pcf")) return map_run_of<K>(depth_map(), p, &Params::depth);
     } else if constexpr (std::is_same_v<Params, SoftPcfParams>) {
         SoftPcfParams p{};  // host/src/soft_pcf.cpp; discs a few texels wide on the 9x5 map
         p.bias = PcfBias{PN_BIAS_CONSTANT, 1e-3f, 1.0f, 0.0f, 0.02f};
@@ -157,7 +165,7 @@ LookupRun lookup_case(const Sources& s)
         p.min_radius = 0.02f;
         p.max_radius = 0.3f;
         p.bias_slope = 2.0f;
-        if (name == "pcss" || name == "burley") return map_run_of<K>(depth_map(), p);
+        if (name == "pcss" || name == "burley") return map_run_of<K>(depth_map(), p, &Params::depth);
     }
     return {};
 }

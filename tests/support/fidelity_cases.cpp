@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
 
 #include "penumbra/chebyshev.h"
 #include "penumbra/moment_table.h"
@@ -92,11 +93,17 @@ bool is_soft(Method m) { return m == Method::Vssm || m == Method::MsmSoft; }
 
 std::vector<Mode> modes_of(Method m)
 {
-    if (m == Method::Msm || m == Method::MsmSoft) return {Mode::Default, Mode::Msm16};
-    return {Mode::Default};
+    if (m == Method::MsmSoft) return {Mode::Default, Mode::Msm16};
+    if (m == Method::Msm) return {Mode::Default, Mode::Msm16, Mode::Direct};
+    if (m == Method::Vssm) return {Mode::Default};
+    return {Mode::Default, Mode::Direct};
 }
 
-std::string mode_name(Method, Mode mode) { return mode == Mode::Msm16 ? "--quantize 16" : "default"; }
+std::string mode_name(Method, Mode mode)
+{
+    if (mode == Mode::Direct) return "direct sums";
+    return mode == Mode::Msm16 ? "--quantize 16" : "default table";
+}
 
 namespace {
 
@@ -145,10 +152,25 @@ std::vector<LibraryRun> run_library(Context& ctx, Method m, Mode mode, const Ima
     p.max_radius = kExactMaxRadius - 1;  // exact tables: the filter window and its slivers within 255 texels
     // The default mode is whatever the API's default arguments are: what
     // `penumbra shade` builds with no precision or quantization option.
+    // Mode::Direct: the box methods' `Image depth` overloads, under the
+    // default table's parameters (the same method, no table).
+    const bool direct = mode == Mode::Direct;
+    if (direct && is_soft(m)) throw std::invalid_argument(method_name(m) + " has no direct window sums");
+    if (m == Method::Vsm && direct)
+        return lookups(map, settings, p, [&](const Image& depth, Setting s) {
+            return vsm(ctx, depth, rx, VsmOptions{s.radius, p.min_variance, p.bleed});
+        });
     if (m == Method::Vsm || m == Method::Vssm) {
         return lookups(build_moment_table(ctx, map), settings, p, [&](const MomentTable& t, Setting s) {
             return m == Method::Vsm ? vsm(ctx, t, rx, VsmOptions{s.radius, p.min_variance, p.bleed})
                                     : vssm(ctx, t, rx, VssmOptions{s.light_size, p.min_variance, p.bleed});
+        });
+    }
+    if (m == Method::Msm && direct) {
+        p.moment_bias = default_moment_bias(Quantization::None);
+        p.msm_depth_bias = default_depth_bias(Quantization::None);
+        return lookups(map, settings, p, [&](const Image& depth, Setting s) {
+            return msm(ctx, depth, rx, MsmOptions{s.radius, {}, {}});
         });
     }
     if (m == Method::Msm || m == Method::MsmSoft) {
@@ -167,9 +189,9 @@ std::vector<LibraryRun> run_library(Context& ctx, Method m, Mode mode, const Ima
     }
     EvsmWarp warp;
     warp.channels = m == Method::Evsm2 ? 2 : 4;
-    const EvsmTable t = build_evsm_table(ctx, map, warp);
-    p.positive = t.positive;
-    p.negative = t.negative;
+    const EvsmTable t = direct ? EvsmTable{} : build_evsm_table(ctx, map, warp);
+    p.positive = direct ? default_evsm_exponent(Quantization::None, true) : t.positive;
+    p.negative = direct ? (warp.channels == 4 ? default_evsm_exponent(Quantization::None, false) : 0.0f) : t.negative;
     const EvsmOptions defaults;
     p.min_variance = defaults.min_variance;
     p.bleed = defaults.bleed;
@@ -177,7 +199,7 @@ std::vector<LibraryRun> run_library(Context& ctx, Method m, Mode mode, const Ima
     return lookups(t, settings, p, [&](const EvsmTable& table, Setting s) {
         EvsmOptions o;
         o.radius = s.radius;
-        return evsm(ctx, table, rx, o);
+        return direct ? evsm(ctx, map, warp, rx, o) : evsm(ctx, table, rx, o);
     });
 }
 

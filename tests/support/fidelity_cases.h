@@ -34,8 +34,11 @@ Image receivers_at_texels(const Image& map, float dz);
 // tool; the before table was measured at commit 94e0387, whose Mode::Float
 // built them.)
 enum class Mode {
-    Default,  // what `penumbra shade` uses with no precision or quantization option
+    Default,  // the tables `penumbra shade` builds with no precision or quantization option
     Msm16,    // msm, msm-soft: the opt-in I3D 2015 16-bit quantization (--quantize 16)
+    Direct,   // vsm, msm, evsm2, evsm4: the window summed from the map, no table (the
+              // `Image depth` overloads; what `penumbra shade` runs at radii up to the
+              // method's cut, docs/moment_table.md)
 };
 std::string mode_name(Method m, Mode mode);
 std::vector<Mode> modes_of(Method m);

@@ -35,6 +35,18 @@ Image vssm(Context& context, const MomentTable& table, const Image& receivers, c
 // The same into an existing 1-channel image of the receivers' size: no
 // allocation, for per-frame use. If they throw, `out` is left unspecified.
 void vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options, Image& out);
+
+// VSM with the window's sums taken directly from the shadow map (`depth`:
+// one channel, depths in [0, 1]) instead of a table: the same method (the
+// same window and bound, to the last bits of double), O((2r+1)^2) per
+// receiver and no table to build, faster than a table's lookup for
+// radius <= kVsmDirectMaxRadius (measured, docs/moment_table.md: "Direct sums
+// for small windows"); any radius the table takes is accepted.
+// `penumbra shade` and the method table pick this form for those radii.
+inline constexpr int kVsmDirectMaxRadius = 2;
+Image vsm(Context& context, const Image& depth, const Image& receivers, const VsmOptions& options);
+void vsm(Context& context, const Image& depth, const Image& receivers, const VsmOptions& options, Image& out);
+
 void vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options, Image& out);
 
 }  // namespace penumbra

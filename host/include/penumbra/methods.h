@@ -75,6 +75,9 @@ public:
     }
 
     const Image& map() const { return *map_; }
+    // Whether the build step made a table (a box method at a small radius
+    // makes none: its shade step sums the window from the map).
+    bool has_table() const { return table_.has_value(); }
     // The table the build step made, as its own type (throws std::bad_any_cast
     // for another: a method's two steps disagree, a defect).
     template <class Table>

@@ -99,6 +99,16 @@ void msm(Context& context, const MsmTable& table, const Image& receivers, const 
 void msm_soft(Context& context, const MsmTable& table, const Image& receivers, const MsmSoftOptions& options,
               Image& out);
 
+// MSM with the window's z .. z^4 summed directly from the shadow map
+// (`depth`: one channel, depths in [0, 1]) instead of a table: the default
+// storage's method (Quantization::None; its biases), O((2r+1)^2) per
+// receiver and no table to build; faster than the table's lookup for
+// radius <= kMsmDirectMaxRadius (docs/moment_table.md, "Direct sums for small
+// windows"), which `penumbra shade` then picks.
+inline constexpr int kMsmDirectMaxRadius = 2;
+Image msm(Context& context, const Image& depth, const Image& receivers, const MsmOptions& options = {});
+void msm(Context& context, const Image& depth, const Image& receivers, const MsmOptions& options, Image& out);
+
 // --- EVSM ----------------------------------------------------------------
 
 // The largest exponent each storage holds (kernels/exponential_warp.h):
@@ -148,6 +158,17 @@ struct EvsmOptions {
 
 Image evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options = {});
 void evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options, Image& out);
+
+// EVSM with the window's warps summed directly from the shadow map (`depth`)
+// under `warp` (its quantization must be None: the warps in double, as the
+// exact table holds them), no table; faster than the table's lookup for
+// radius <= kEvsmDirectMaxRadius (docs/moment_table.md), which `penumbra
+// shade` then picks.
+inline constexpr int kEvsmDirectMaxRadius = 1;
+Image evsm(Context& context, const Image& depth, const EvsmWarp& warp, const Image& receivers,
+           const EvsmOptions& options = {});
+void evsm(Context& context, const Image& depth, const EvsmWarp& warp, const Image& receivers,
+          const EvsmOptions& options, Image& out);
 
 std::string to_string(Quantization quantization);
 // "none", "16" or "32"; throws Error(InvalidArgument) otherwise.
