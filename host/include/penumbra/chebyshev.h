@@ -43,7 +43,7 @@ void vsm(Context& context, const MomentTable& table, const Image& receivers, con
 // radius <= kVsmDirectMaxRadius (measured, docs/moment_table.md: "Direct sums
 // for small windows"); any radius the table takes is accepted.
 // `penumbra shade` and the method table pick this form for those radii.
-inline constexpr int kVsmDirectMaxRadius = 2;
+inline constexpr int kVsmDirectMaxRadius = 0;
 Image vsm(Context& context, const Image& depth, const Image& receivers, const VsmOptions& options);
 void vsm(Context& context, const Image& depth, const Image& receivers, const VsmOptions& options, Image& out);
 

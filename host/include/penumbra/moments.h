@@ -105,7 +105,7 @@ void msm_soft(Context& context, const MsmTable& table, const Image& receivers, c
 // receiver and no table to build; faster than the table's lookup for
 // radius <= kMsmDirectMaxRadius (docs/moment_table.md, "Direct sums for small
 // windows"), which `penumbra shade` then picks.
-inline constexpr int kMsmDirectMaxRadius = 2;
+inline constexpr int kMsmDirectMaxRadius = 1;
 Image msm(Context& context, const Image& depth, const Image& receivers, const MsmOptions& options = {});
 void msm(Context& context, const Image& depth, const Image& receivers, const MsmOptions& options, Image& out);
 
@@ -164,7 +164,7 @@ void evsm(Context& context, const EvsmTable& table, const Image& receivers, cons
 // exact table holds them), no table; faster than the table's lookup for
 // radius <= kEvsmDirectMaxRadius (docs/moment_table.md), which `penumbra
 // shade` then picks.
-inline constexpr int kEvsmDirectMaxRadius = 1;
+inline constexpr int kEvsmDirectMaxRadius = 0;
 Image evsm(Context& context, const Image& depth, const EvsmWarp& warp, const Image& receivers,
            const EvsmOptions& options = {});
 void evsm(Context& context, const Image& depth, const EvsmWarp& warp, const Image& receivers,
