@@ -79,14 +79,16 @@ PN_FN void direct_box_sums(PN_GLOBAL const float* depth, pn_dims d, TexelWindow 
 }
 
 /* The window's means of the values: the direct counterpart of a table's
- * box query (`depth`: the map, one plane of dims `d`). */
+ * box query (`depth`: the map, one plane of dims `d`). One reciprocal of the
+ * area, not a division per value: double divisions are much of MSM's and
+ * EVSM's time; it moves a mean by at most one rounding (2^-53 relative). */
 PN_FN void direct_box_means(PN_GLOBAL const float* depth, pn_dims d, TexelWindow w, int radius, int encoding,
                             float c_positive, float c_negative, int moments, pn_double* mean)
 {
     pn_double sum[4];
     direct_box_sums(depth, d, w, radius, encoding, c_positive, c_negative, moments, sum);
-    const pn_double area = pn_int_to_double((w.x1 - w.x0) * (w.y1 - w.y0));
-    for (int k = 0; k < moments; ++k) mean[k] = sum[k] / area;
+    const pn_double inverse_area = 1.0 / pn_int_to_double((w.x1 - w.x0) * (w.y1 - w.y0));
+    for (int k = 0; k < moments; ++k) mean[k] = sum[k] * inverse_area;
 }
 
 #endif

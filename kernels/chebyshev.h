@@ -81,12 +81,18 @@ PN_FN pn_double chebyshev_upper_bound(DepthMoments m, pn_double z, double min_va
     return pn_dselect(z <= m.mean, 1.0, p_max);
 }
 
-/* The light-bleeding reduction pn_linstep(bleed, 1, p), in double. */
+/* The light-bleeding reduction pn_linstep(bleed, 1, p), in double: times
+ * the uniform 1 / (1 - bleed), so that no lane divides (exact for the
+ * default bleed 0). */
+PN_FN pn_double chebyshev_bleed(pn_double p, float bleed)
+{
+    const double lo = bleed;
+    return pn_dclamp((p - lo) * (1.0 / (1.0 - lo)), 0.0, 1.0);
+}
+
 PN_FN pn_float chebyshev_visibility(DepthMoments m, pn_float z, float min_variance, float bleed)
 {
-    const pn_double p = chebyshev_upper_bound(m, pn_to_double(z), min_variance);
-    const double lo = bleed;
-    return pn_double_to_float(pn_dclamp((p - lo) / (1.0 - lo), 0.0, 1.0));
+    return pn_double_to_float(chebyshev_bleed(chebyshev_upper_bound(m, pn_to_double(z), min_variance), bleed));
 }
 
 /* Mean and mean square over the texels [x0, x1) x [y0, y1). `limbs` is the
@@ -105,10 +111,10 @@ PN_FN DepthMoments box_moments_float(PN_GLOBAL const float* table, pn_dims t, in
 PN_FN DepthMoments box_moments_exact(PN_GLOBAL const uint* table, pn_dims t, int limbs, pn_int x0, pn_int x1,
                                      pn_int y0, pn_int y1)
 {
-    const pn_double area = pn_int_to_double((x1 - x0) * (y1 - y0));
+    const pn_double inverse_area = 1.0 / pn_int_to_double((x1 - x0) * (y1 - y0));  /* as direct_box_means */
     DepthMoments m;
-    m.mean = sat_limb_box_sum(table, t, limbs, 0, 1.0 / 65536.0, x0, x1, y0, y1) / area;
-    m.mean_sq = sat_limb_box_sum(table, t, limbs, 1, 1.0 / 65536.0, x0, x1, y0, y1) / area;
+    m.mean = sat_limb_box_sum(table, t, limbs, 0, 1.0 / 65536.0, x0, x1, y0, y1) * inverse_area;
+    m.mean_sq = sat_limb_box_sum(table, t, limbs, 1, 1.0 / 65536.0, x0, x1, y0, y1) * inverse_area;
     return m;
 }
 

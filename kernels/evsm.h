@@ -30,9 +30,8 @@ PN_FN pn_float evsm_warp_visibility(pn_double mean, pn_double mean_sq, pn_double
     DepthMoments m;
     m.mean = mean * inverse;
     m.mean_sq = mean_sq * (inverse * inverse);
-    const pn_double bound = chebyshev_upper_bound(m, warped_receiver * inverse, p.min_variance);
-    const double lo = p.bleed;
-    return pn_double_to_float(pn_dclamp((bound - lo) / (1.0 - lo), 0.0, 1.0));
+    return pn_double_to_float(chebyshev_bleed(chebyshev_upper_bound(m, warped_receiver * inverse, p.min_variance),
+                                              p.bleed));
 }
 
 /* `mean` holds the window means of the table's channels. */
@@ -61,9 +60,10 @@ PN_FN void evsm_box_means_float(PN_GLOBAL const float* table, const MomentParams
 
 PN_FN void evsm_box_means_exact(PN_GLOBAL const uint* table, const MomentParams p, TexelWindow w, pn_double* mean)
 {
-    const pn_double area = pn_int_to_double((w.x1 - w.x0) * (w.y1 - w.y0));
+    const pn_double inverse_area = 1.0 / pn_int_to_double((w.x1 - w.x0) * (w.y1 - w.y0));  /* as direct_box_means */
     for (int k = 0; k < p.channels; ++k)
-        mean[k] = sat_limb_box_sum(table, p.table, p.limbs, k, sat_limb_unit(p.limbs), w.x0, w.x1, w.y0, w.y1) / area;
+        mean[k] = sat_limb_box_sum(table, p.table, p.limbs, k, sat_limb_unit(p.limbs), w.x0, w.x1, w.y0, w.y1) *
+                  inverse_area;
 }
 
 #define PN_EVSM_KERNEL(variant, T)                                    \

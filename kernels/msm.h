@@ -224,23 +224,26 @@ PN_FN pn_double msm_two_point_intensity(TwoPoints t, pn_double z)
     return pn_dselect(z <= t.x1, 0.0, pn_dselect(z <= t.x2, 1.0 - t.upper_weight, 1.0));
 }
 
-/* Cantelli's two-moment bounds on P(Z < z) (kernels/chebyshev.h's bound, and
- * the same bound on the lower tail, P(Z <= z), through Z -> -Z): the
- * interval every distribution with mean b1 and second moment b2 keeps to. */
-PN_FN pn_double msm_cantelli_lower(FourMoments b, pn_double z)
-{
-    DepthMoments m;
-    m.mean = b.b1;
-    m.mean_sq = b.b2;
-    return 1.0 - chebyshev_upper_bound(m, z, 0.0);
-}
+/* Cantelli's two-moment bounds on P(Z < z) (kernels/chebyshev.h's bound
+ * 1 - P(Z >= z), and the same bound on the lower tail, P(Z <= z), through
+ * Z -> -Z): the interval every distribution with mean b1 and second moment
+ * b2 keeps to. Both tails share the quotient p = s^2 / (s^2 + (z - b1)^2)
+ * (the reflection keeps s^2 and (z - b1)^2 to the bit), so it is divided
+ * once: double divisions are much of MSM's time (docs/moment_table.md). */
+typedef struct {
+    pn_double lower, upper;
+} CantelliBounds;
 
-PN_FN pn_double msm_cantelli_upper(FourMoments b, pn_double z)
+PN_FN CantelliBounds msm_cantelli(FourMoments b, pn_double z)
 {
-    DepthMoments reflected;
-    reflected.mean = -b.b1;
-    reflected.mean_sq = b.b2;
-    return chebyshev_upper_bound(reflected, -z, 0.0);
+    const pn_double variance = pn_dmax(b.b2 - b.b1 * b.b1, 0.0);
+    const pn_double d = z - b.b1;
+    /* As chebyshev_upper_bound: the floor keeps 0 / 0 out. */
+    const pn_double p = variance / pn_dmax(variance + d * d, 1e-300);
+    CantelliBounds c;
+    c.lower = pn_dselect(z <= b.b1, 0.0, 1.0 - p);
+    c.upper = pn_dselect(z >= b.b1, 1.0, p);
+    return c;
 }
 
 /* The window's own distribution where the moments determine it: one depth
@@ -295,7 +298,8 @@ PN_FN pn_double msm_intensity(FourMoments raw, pn_double z, MsmPrecision precisi
     const pn_dmask hamburger = msm_roots_in_domain(r);
     pn_double g = msm_hamburger(b, c, r, z);
     if (pn_dany(pn_dand(definite, pn_dnot(hamburger)))) g = pn_dselect(hamburger, g, msm_hausdorff(b, z));
-    const pn_double lower = msm_cantelli_lower(b, z);
+    const CantelliBounds cantelli = msm_cantelli(b, z);
+    const pn_double lower = cantelli.lower;
     if (pn_dany(pn_dnot(definite))) {
         const TwoPoints t = msm_two_points(raw, msm_factor(raw));
         const pn_double two = pn_dselect(msm_two_points_valid(t), msm_two_point_intensity(t, z), lower);
@@ -303,7 +307,7 @@ PN_FN pn_double msm_intensity(FourMoments raw, pn_double z, MsmPrecision precisi
         g = pn_dselect(definite, g, msm_with_bias_atoms(pn_dselect(one_point, one, two), z, alpha));
     }
     g = pn_dselect(pn_dfinite(g), g, lower);
-    g = pn_dclamp(g, lower, msm_cantelli_upper(b, z));
+    g = pn_dclamp(g, lower, cantelli.upper);
     return pn_dselect(z <= 0.0, 0.0, pn_dselect(z > 1.0, 1.0, g));
 }
 
@@ -337,13 +341,15 @@ PN_FN MsmPrecision msm_box_means_float(PN_GLOBAL const float* table, const Momen
 }
 
 /* The four window means of an exact table: a limb table of z..z^4
- * (PN_MOMENTS_POWER) or sums of 16-bit steps of the optimized moments. */
+ * (PN_MOMENTS_POWER) or sums of 16-bit steps of the optimized moments; one
+ * reciprocal of the area, as direct_box_means (kernels/box_window.h). */
 PN_FN MsmPrecision msm_box_means_exact(PN_GLOBAL const uint* table, const MomentParams p, TexelWindow w,
                                        pn_double* mean)
 {
-    const pn_double area = pn_int_to_double((w.x1 - w.x0) * (w.y1 - w.y0));
+    const pn_double inverse_area = 1.0 / pn_int_to_double((w.x1 - w.x0) * (w.y1 - w.y0));
     const double unit = sat_limb_unit(p.limbs);
-    for (int k = 0; k < 4; ++k) mean[k] = sat_limb_box_sum(table, p.table, p.limbs, k, unit, w.x0, w.x1, w.y0, w.y1) / area;
+    for (int k = 0; k < 4; ++k)
+        mean[k] = sat_limb_box_sum(table, p.table, p.limbs, k, unit, w.x0, w.x1, w.y0, w.y1) * inverse_area;
     return msm_exact_precision(p);
 }
 
