@@ -4,7 +4,7 @@
  * Per receiver (u, v, z): the window is the (2r+1) x (2r+1) block of texels
  * centred on the texel containing (u, v) (u, v clamped into the map), clipped
  * to the map: the `penumbra shade` window contract, the same block as
- * kernels/vsm.h's texel_window. The visibility is the fraction of the
+ * kernels/box_window.h's texel_window. The visibility is the fraction of the
  * window's texels that are lit (kernels/depth_bias.h: depth >= z - beta),
  * in [0, 1]; every texel weighs the same. Inputs: the shadow map, one plane
  * of depths; receivers per PcfParams. Output: one plane of visibility.

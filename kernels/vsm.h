@@ -4,8 +4,8 @@
  * centred on the texel containing (u, v) (u, v clamped into the map), clipped
  * to the map (kernels/box_window.h); its mean and variance come from the
  * moment table in O(1) (vsm_float, vsm_exact) or from direct sums of the
- * map's depths (vsm_direct, small radii); the
- * visibility is the Chebyshev bound of kernels/chebyshev.h, in [0, 1].
+ * map's depths (vsm_direct, small radii); the visibility is the Chebyshev
+ * bound of kernels/chebyshev.h, in [0, 1].
  * Inputs: receivers planes u, v in [0, 1] (texture coordinates), z (light
  * depth, same units as the map). Output: one plane of visibility.
  */
