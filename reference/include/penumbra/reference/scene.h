@@ -77,10 +77,12 @@ struct Medium {
 // Hair: `strands` strands rooted uniformly (by area) on the cap of the sphere
 // (center, scalp_radius) within cap_degrees of `axis`. A strand is a chain of
 // `segments` capsules of radius `radius`, `length` long in all; it leaves the
-// scalp along its normal and, per segment, turns towards -y by droop / segments
-// of the way and by a random curl (radians of the per-segment turn, at most).
-// hair_strands() generates the capsules from `seed`, identically on every
-// platform. Each capsule is a layer of the hair's opacity (where a ray crosses
+// scalp along its normal, and each segment's direction is the previous one
+// plus droop / segments of a unit step down (-y) plus a random vector with
+// components in [-curl, curl], normalised. hair_strands() generates the
+// capsules from `seed` through SplitMix64 (no std:: distributions, whose
+// output differs between standard libraries): the same seed, the same
+// strands. Each capsule is a layer of the hair's opacity (where a ray crosses
 // a joint it crosses two capsules: exact for opaque hair, a double step for a
 // translucent one). Meant to be thinner than a shadow-map texel.
 struct Hair {
