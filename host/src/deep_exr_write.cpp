@@ -160,8 +160,10 @@ void stage_deep_exr(OutputFiles& output, const std::string& path, const DeepShad
 {
     require(map.width() >= 1 && map.height() >= 1, kOperation, "map",
             "the map for '" + path + "' is empty; a deep EXR file needs at least one pixel");
-    require(options.tile_size >= 1 && options.tile_size <= 4096, kOperation, "tile_size",
-            "must be in [1, 4096], not " + std::to_string(options.tile_size));
+    // 2048^2 = 2^22 pixels: the largest tile the reader takes for any image
+    // (check_declared_sizes allows the image's pixels plus 2^22).
+    require(options.tile_size >= 1 && options.tile_size <= 2048, kOperation, "tile_size",
+            "must be in [1, 2048], not " + std::to_string(options.tile_size));
     require_safe_outputs({path}, {}, kOperation);
     output.stage(path, [&](const std::string& temporary) {
         detail::translating_exr_exceptions(kOperation, path, "; check free disk space and write permission",

@@ -51,7 +51,7 @@ public:
 
     void run()
     {
-        const std::size_t n = z_.size();
+        const std::size_t n = z_.size(), begin = out_z_.size();
         emit(z_[0], 1.0f);
         std::size_t last_fitted = 0;
         for (std::size_t i = 1; i < n;) {
@@ -73,7 +73,10 @@ public:
             }
             end_segment_at(last_fitted);  // vertex i is tried again from the new origin
         }
-        if (out_z_.back() != z_[n - 1] || out_t_.back() != t_[n - 1]) emit(z_[n - 1], t_[n - 1]);
+        // The end, unless already there; always when only the start was emitted
+        // (every vertex at z_0 with t = 1), since a function has 0 or >= 2 vertices.
+        if (out_z_.size() - begin == 1 || out_z_.back() != z_[n - 1] || out_t_.back() != t_[n - 1])
+            emit(z_[n - 1], t_[n - 1]);
     }
 
 private:

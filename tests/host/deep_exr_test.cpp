@@ -82,7 +82,7 @@ TEST_F(DeepExr, ScanlineRoundTripIsBitExact)
 
 TEST_F(DeepExr, TiledRoundTripIsBitExact)
 {
-    for (const int tile : {1, 7, 16, 64})
+    for (const int tile : {1, 7, 16, 64, 2048})
         for (const auto& [w, h] : {std::pair{1, 1}, {13, 5}, {70, 67}}) {
             const DeepShadowMap map = random_map(w, h, std::uint32_t(tile * 7 + w), 0.02f);
             write_deep_exr(path("map.exr"), map, {DeepExrLayout::Tiled, tile});

@@ -192,6 +192,15 @@ TEST(DsmCompression, FullyOpaqueAtTheFirstDepth)
     EXPECT_EQ(c.t, (std::vector<float>{1.0f, 0.0f, 0.0f}));
 }
 
+TEST(DsmCompression, AllAtOneDepthAndFullyLitKeepsTwoVertices)
+{
+    for (const Function& f : {Function{{5.0f, 5.0f}, {1.0f, 1.0f}}, Function{{5.0f, 5.0f, 5.0f}, {1.0f, 1.0f, 1.0f}}}) {
+        const Function c = compressed(f, 0.1f);
+        EXPECT_EQ(c.z, (std::vector<float>{5.0f, 5.0f}));
+        EXPECT_EQ(c.t, (std::vector<float>{1.0f, 1.0f}));
+    }
+}
+
 TEST(DsmCompression, EmptyFunctionStaysEmpty)
 {
     const Function c = compressed({}, 0.1f);

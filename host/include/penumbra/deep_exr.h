@@ -45,7 +45,7 @@ enum class DeepExrLayout { Scanline, Tiled };
 
 struct DeepExrWriteOptions {
     DeepExrLayout layout = DeepExrLayout::Scanline;  // every deep reader takes scanline files
-    int tile_size = 64;                              // square tiles, for DeepExrLayout::Tiled
+    int tile_size = 64;                              // square tiles in [1, 2048], for DeepExrLayout::Tiled
 };
 
 // Writes `map` atomically (penumbra/output_files.h): a failed write leaves no
