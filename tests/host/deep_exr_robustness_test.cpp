@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -143,6 +144,48 @@ TEST_F(DeepExrRobustness, EveryTruncationIsATypedError)
             }
             EXPECT_GT(refused, 100);
         }
+}
+
+// Random damage to genuine files (a few bytes anywhere, seeded): each read
+// either refuses with Error or returns a map, whose invariants the builder has
+// checked. Any other exception fails the test; a crash ends it.
+TEST_F(DeepExrRobustness, RandomDamageIsRefusedOrReadAsAValidMap)
+{
+    std::vector<std::string> originals;
+    for (const int tile : {0, 3})
+        for (const Imf::Compression c : {Imf::NO_COMPRESSION, Imf::RLE_COMPRESSION, Imf::ZIPS_COMPRESSION}) {
+            RawDeep raw(5, 4);
+            raw.tile = tile, raw.compression = c;
+            for (int p = 0; p < 20; ++p) {
+                const float z = float(p % 7);
+                raw.pixels[std::size_t(p)] = {{"Z", {z, z + 1, z + 1}}, {"ZBack", {z + 1, z + 1, z + 4}},
+                                              {"A", {0.2f, 0.5f, 0.1f}}};
+            }
+            testing::write_raw_deep(path("seed.exr"), raw);
+            originals.push_back(testing::slurp(path("seed.exr")));
+        }
+    std::mt19937 rng(2024);
+    int read = 0, refused = 0;
+    for (const std::string& original : originals)
+        for (int trial = 0; trial < 250; ++trial) {
+            std::string bytes = original;
+            const int changes = 1 + int(rng() % 6);
+            for (int k = 0; k < changes; ++k) {
+                const std::size_t at = rng() % bytes.size();
+                bytes[at] = (rng() % 3 == 0) ? char(0xff) : char(rng() & 0xff);
+            }
+            std::ofstream(path("damaged.exr"), std::ios::binary | std::ios::trunc) << bytes;
+            try {
+                const DeepShadowMap map = read_deep_exr(path("damaged.exr"));
+                EXPECT_GE(map.width() * map.height(), 1);
+                ++read;
+            } catch (const Error& e) {
+                EXPECT_NE(e.message().find("damaged.exr"), std::string::npos) << e.what();
+                ++refused;
+            }
+        }
+    EXPECT_GT(refused, 0);
+    EXPECT_EQ(read + refused, 1500);
 }
 
 // An uncompressed one-line file, so that its chunk's fields sit at known places
