@@ -7,8 +7,9 @@
 // slope to [(lo_i - t_o)/(z_i - z_o), (hi_i - t_o)/(z_i - z_o)]; the running
 // intersection of those ranges is the set of segments that still fit. When
 // the next window empties it, the segment ends at the last input depth that
-// fitted, with the middle slope of the range (the paper's choice, leaving the
-// most room either side), and that end is the next origin. One pass, O(n).
+// fitted, with the middle slope of the range (the seed does not fix which
+// slope; the middle leaves the next segment the most room either side), and
+// that end is the next origin. One pass, O(n).
 //
 // Why the band then holds at every depth, not only at the vertices: every
 // output depth is an input depth, so on each input segment both functions are
