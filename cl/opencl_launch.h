@@ -2,7 +2,8 @@
 // buffers..., params) binds the buffers and then the parameter struct of the
 // kernel table's entry K (kernels/kernel_table.h) by a fold over the
 // arguments, then the shape's last argument (pixel: the first row, 0; task:
-// the task count), and enqueues one work-item per pixel or per task.
+// the task count), and enqueues one work-item per pixel or per task, in
+// work-groups of a fixed size (cl/opencl_work_groups.h says why).
 //
 // A DeviceBuffer<P> is a cl::Buffer that the kernel sees as the pointer type P
 // the table gives the argument (PN_IN(T) -> const T*, PN_OUT(T) and
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "cl/opencl_programs.h"
+#include "cl/opencl_work_groups.h"
 #include "host/backend/kernel_id.h"
 #include "penumbra/image.h"
 #include "penumbra/moment_table.h"
@@ -150,11 +152,15 @@ void bind(cl::Kernel& kernel, cl_uint index, const Params& params)
     kernel.setArg(index, sizeof(Params), &params);
 }
 
+// The range rounded up to whole work-groups (cl/opencl_work_groups.h).
 inline cl::NDRange global_range(Pixels pixels)
 {
-    return cl::NDRange(std::size_t(pixels.width), std::size_t(pixels.height));
+    return cl::NDRange(round_up(std::size_t(pixels.width), kPixelGroupWidth),
+                       round_up(std::size_t(pixels.height), kPixelGroupHeight));
 }
-inline cl::NDRange global_range(Tasks tasks) { return cl::NDRange(std::size_t(tasks.count)); }
+inline cl::NDRange global_range(Tasks tasks) { return cl::NDRange(round_up(std::size_t(tasks.count), kTaskGroupSize)); }
+inline cl::NDRange local_range(Pixels) { return pixel_group(); }
+inline cl::NDRange local_range(Tasks) { return task_group(); }
 // The shape's last argument: PN_PIXEL_ARGS (the launch's first row) or PN_TASK_ARGS.
 inline int shape_argument(Pixels) { return 0; }
 inline int shape_argument(Tasks tasks) { return tasks.count; }
@@ -174,7 +180,8 @@ void launch(KernelPrograms& programs, const cl::CommandQueue& queue, Range range
     cl_uint index = 0;
     (launch_detail::bind(kernel, index++, args), ...);
     kernel.setArg(index, launch_detail::shape_argument(range));
-    queue.enqueueNDRangeKernel(kernel, cl::NullRange, launch_detail::global_range(range));
+    queue.enqueueNDRangeKernel(kernel, cl::NullRange, launch_detail::global_range(range),
+                               launch_detail::local_range(range));
 }
 
 }  // namespace penumbra::cl_backend
