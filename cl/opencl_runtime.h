@@ -15,6 +15,7 @@
 #include <CL/opencl.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -83,9 +84,12 @@ class Runtime {
 public:
     // Throws Error(Unavailable) when no device fits `choice`, Error(Backend) when
     // the context or queue cannot be created. `cache` holds program binaries
-    // between runs; pass ProgramCache() to disable it.
+    // between runs; `seed` is read, never written, when `cache` misses (the
+    // binaries made at build time, cl/program_seed.h). Pass ProgramCache() to
+    // disable either.
     explicit Runtime(DeviceChoice choice = DeviceChoice::Any,
-                     ProgramCache cache = ProgramCache::in_default_directory());
+                     ProgramCache cache = ProgramCache::in_default_directory(),
+                     ProgramCache seed = ProgramCache::installed_seed());
 
     const cl::Context& context() const { return context_; }
     const cl::Device& device() const { return device_; }
@@ -93,17 +97,24 @@ public:
     const DeviceInfo& device_info() const { return info_; }
     const ProgramCache& program_cache() const { return cache_; }
 
+    // Runs on a program built from source before its binary is stored
+    // (KernelPrograms launches its kernel once: cl/opencl_prime.h).
+    using BeforeStore = std::function<void(const cl::Program&)>;
+
     // Builds `source` with `options` for the device, from the binary cache when it
-    // holds a valid entry, else from source (then stores the binary). A compile
-    // error throws Error(Backend) naming clBuildProgram, the error name, the
-    // options and the whole build log.
-    cl::Program build(const std::string& source, const std::string& options);
+    // holds a valid entry, else from the seed, else from source (then runs
+    // `before_store` and stores the binary). A compile error throws
+    // Error(Backend) naming clBuildProgram, the error name, the options and the
+    // whole build log.
+    cl::Program build(const std::string& source, const std::string& options, const BeforeStore& before_store = {});
 
     // Wall time of the last build() call, cache lookup and store included.
     double last_build_seconds() const { return last_build_seconds_; }
     bool last_build_from_cache() const { return last_build_from_cache_; }
-    // Why the last build did not come from the cache (empty after a hit), or why
-    // its binary could not be stored: for `penumbra info` and debugging.
+    bool last_build_from_seed() const { return last_build_from_seed_; }
+    // Why the last build did not come from the cache (empty after a hit), nor
+    // from the seed, or why its binary could not be stored: for `penumbra info`
+    // and debugging.
     const std::string& last_cache_note() const { return last_cache_note_; }
 
     // The key build() files this program under in program_cache().
@@ -111,7 +122,8 @@ public:
 
 private:
     std::optional<cl::Program> build_from_binary(const std::vector<unsigned char>& binary,
-                                                 const std::string& options);
+                                                 const std::string& options, std::string_view origin);
+    std::optional<cl::Program> build_from_stores(std::uint64_t key, const std::string& options);
     cl::Program build_from_source(const std::string& source, const std::string& options) const;
     void store_binary(const cl::Program& program, std::uint64_t key);
 
@@ -120,8 +132,10 @@ private:
     cl::CommandQueue queue_;
     DeviceInfo info_;
     ProgramCache cache_;
+    ProgramCache seed_;
     double last_build_seconds_ = 0.0;
     bool last_build_from_cache_ = false;
+    bool last_build_from_seed_ = false;
     std::string last_cache_note_;
 };
 
