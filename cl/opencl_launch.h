@@ -3,7 +3,7 @@
 // kernel table's entry K (kernels/kernel_table.h) by a fold over the
 // arguments, then the shape's last argument (pixel: the first row, 0; task:
 // the task count), and enqueues one work-item per pixel or per task, in
-// work-groups of a fixed size (cl/opencl_work_groups.h says why).
+// work-groups of the device's fixed size (cl/opencl_work_groups.h says why).
 //
 // A DeviceBuffer<P> is a cl::Buffer that the kernel sees as the pointer type P
 // the table gives the argument (PN_IN(T) -> const T*, PN_OUT(T) and
@@ -153,14 +153,17 @@ void bind(cl::Kernel& kernel, cl_uint index, const Params& params)
 }
 
 // The range rounded up to whole work-groups (cl/opencl_work_groups.h).
-inline cl::NDRange global_range(Pixels pixels)
+inline cl::NDRange global_range(Pixels pixels, const WorkGroups& groups)
 {
-    return cl::NDRange(round_up(std::size_t(pixels.width), kPixelGroupWidth),
-                       round_up(std::size_t(pixels.height), kPixelGroupHeight));
+    return cl::NDRange(round_up(std::size_t(pixels.width), groups.pixel_width),
+                       round_up(std::size_t(pixels.height), groups.pixel_height));
 }
-inline cl::NDRange global_range(Tasks tasks) { return cl::NDRange(round_up(std::size_t(tasks.count), kTaskGroupSize)); }
-inline cl::NDRange local_range(Pixels) { return pixel_group(); }
-inline cl::NDRange local_range(Tasks) { return task_group(); }
+inline cl::NDRange global_range(Tasks tasks, const WorkGroups& groups)
+{
+    return cl::NDRange(round_up(std::size_t(tasks.count), groups.task));
+}
+inline cl::NDRange local_range(Pixels, const WorkGroups& groups) { return groups.pixel(); }
+inline cl::NDRange local_range(Tasks, const WorkGroups& groups) { return groups.tasks(); }
 // The shape's last argument: PN_PIXEL_ARGS (the launch's first row) or PN_TASK_ARGS.
 inline int shape_argument(Pixels) { return 0; }
 inline int shape_argument(Tasks tasks) { return tasks.count; }
@@ -180,8 +183,9 @@ void launch(KernelPrograms& programs, const cl::CommandQueue& queue, Range range
     cl_uint index = 0;
     (launch_detail::bind(kernel, index++, args), ...);
     kernel.setArg(index, launch_detail::shape_argument(range));
-    queue.enqueueNDRangeKernel(kernel, cl::NullRange, launch_detail::global_range(range),
-                               launch_detail::local_range(range));
+    const WorkGroups& groups = programs.work_groups();
+    queue.enqueueNDRangeKernel(kernel, cl::NullRange, launch_detail::global_range(range, groups),
+                               launch_detail::local_range(range, groups));
 }
 
 }  // namespace penumbra::cl_backend

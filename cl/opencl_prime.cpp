@@ -4,7 +4,6 @@
 #include <string>
 #include <tuple>
 
-#include "cl/opencl_work_groups.h"
 #include "penumbra/error.h"
 
 namespace penumbra::cl_backend {
@@ -30,7 +29,7 @@ void bind_empty(cl::Kernel& kernel, const cl::Buffer& dummy)
 }  // namespace
 
 void prime_kernel(const cl::Context& context, const cl::CommandQueue& queue, const cl::Program& program,
-                  detail::KernelId id)
+                  detail::KernelId id, const WorkGroups& groups)
 {
     cl::Kernel kernel(program, std::string(detail::kernel_name(id)).c_str());
     const cl::Buffer dummy(context, CL_MEM_READ_WRITE, kDummyBytes);
@@ -41,7 +40,7 @@ void prime_kernel(const cl::Context& context, const cl::CommandQueue& queue, con
             return detail::KernelTraits<decltype(k)::value>::shape == detail::KernelShape::pixel;
         },
         []() -> bool { throw Error(ErrorCategory::InvalidArgument, "opencl", "prime_kernel: no kernel entry"); });
-    const cl::NDRange group = pixel ? pixel_group() : task_group();
+    const cl::NDRange group = pixel ? groups.pixel() : groups.tasks();
     queue.enqueueNDRangeKernel(kernel, cl::NullRange, group, group);
     queue.finish();
 }

@@ -15,6 +15,7 @@
 
 #include <CL/opencl.hpp>
 
+#include "cl/opencl_work_groups.h"
 #include "host/backend/kernel_id.h"
 
 namespace penumbra::cl_backend {
@@ -22,6 +23,6 @@ namespace penumbra::cl_backend {
 // Enqueues the empty launch of `id`, the one kernel of `program`, and waits
 // for it. Throws cl::Error as the OpenCL calls do.
 void prime_kernel(const cl::Context& context, const cl::CommandQueue& queue, const cl::Program& program,
-                  detail::KernelId id);
+                  detail::KernelId id, const WorkGroups& groups);
 
 }  // namespace penumbra::cl_backend

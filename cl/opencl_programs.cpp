@@ -50,7 +50,7 @@ void KernelPrograms::build_locked(KernelId id)
     // Launched once before its binary is stored, so that the binary holds the
     // work-group function of the fixed local size (cl/opencl_prime.h).
     const auto prime = [&](const cl::Program& built) {
-        prime_kernel(runtime_.context(), runtime_.queue(), built, id);
+        prime_kernel(runtime_.context(), runtime_.queue(), built, id, runtime_.work_groups());
     };
     const cl::Program program = runtime_.build(program_source(id), kProgramOptions, prime);
     build_seconds_ += runtime_.last_build_seconds();

@@ -175,6 +175,7 @@ DeviceInfo describe(const cl::Platform& platform, const cl::Device& device)
     info.is_cpu = (type & CL_DEVICE_TYPE_CPU) != 0;
     info.type = device_type_name(type);
     info.compute_units = device.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+    info.max_work_group_size = device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
     info.global_memory_bytes = device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
     return info;
 }
@@ -319,6 +320,7 @@ Runtime::Runtime(DeviceChoice choice, ProgramCache cache, ProgramCache seed)
     const FoundDevice& chosen = choose(discovery, choice);
     device_ = chosen.device;
     info_ = chosen.info;
+    work_groups_ = work_groups_for(info_.max_work_group_size);
     // The moment kernels form per-window moments in double (kernels/dialect.h):
     // a device without fp64 would fail to build them, so refuse it here, by name.
     const std::string extensions = translate_cl_errors([&] { return device_.getInfo<CL_DEVICE_EXTENSIONS>(); });
@@ -352,8 +354,9 @@ cl::Program Runtime::build(const std::string& source, const std::string& options
 
 std::uint64_t Runtime::cache_key(const std::string& source, const std::string& options) const
 {
+    const std::string groups = to_string(work_groups_);
     return program_key({source, options, info_.device_name, info_.device_version, info_.driver_version,
-                        info_.platform_name, info_.platform_version});
+                        info_.platform_name, info_.platform_version, groups});
 }
 
 // The user's cache first, then the seed. The seed is not copied into the

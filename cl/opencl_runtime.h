@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "cl/opencl_work_groups.h"
 #include "cl/program_cache.h"
 #include "penumbra/error.h"
 
@@ -55,6 +56,7 @@ struct DeviceInfo {
     bool is_cpu = false;
     std::string type;  // "CPU", "GPU", "accelerator", "custom", joined by '+'
     unsigned compute_units = 0;
+    std::size_t max_work_group_size = 0;
     std::uint64_t global_memory_bytes = 0;
 };
 
@@ -96,6 +98,7 @@ public:
     const cl::CommandQueue& queue() const { return queue_; }
     const DeviceInfo& device_info() const { return info_; }
     const ProgramCache& program_cache() const { return cache_; }
+    const WorkGroups& work_groups() const { return work_groups_; }
 
     // Runs on a program built from source before its binary is stored
     // (KernelPrograms launches its kernel once: cl/opencl_prime.h).
@@ -131,6 +134,7 @@ private:
     cl::Device device_;
     cl::CommandQueue queue_;
     DeviceInfo info_;
+    WorkGroups work_groups_{};
     ProgramCache cache_;
     ProgramCache seed_;
     double last_build_seconds_ = 0.0;

@@ -211,7 +211,7 @@ std::uint64_t program_key(const ProgramIdentity& id)
     Fnv1a64 hash;
     hash.add_field("penumbra program cache v2");  // bump when the file format or what a binary holds changes
     for (std::string_view field : {id.source, id.options, id.device_name, id.device_version,
-                                   id.driver_version, id.platform_name, id.platform_version})
+                                   id.driver_version, id.platform_name, id.platform_version, id.work_groups})
         hash.add_field(field);
     return hash.value();
 }

@@ -90,6 +90,9 @@ struct ProgramIdentity {
     std::string_view driver_version;
     std::string_view platform_name;
     std::string_view platform_version;
+    // The launches' local sizes (cl/opencl_work_groups.h): a binary holds the
+    // work-group functions of the sizes it was launched with.
+    std::string_view work_groups;
 };
 
 std::uint64_t program_key(const ProgramIdentity& identity);

@@ -109,7 +109,7 @@ TEST(DriverCacheLock, ExcludesOthersWhileHeldAndReleasesAfter)
 
 TEST(ProgramKey, ChangesWithEveryField)
 {
-    const ProgramIdentity base{"src", "-O", "dev", "dver", "drv", "plat", "pver"};
+    const ProgramIdentity base{"src", "-O", "dev", "dver", "drv", "plat", "pver", "512x8,64"};
     const std::uint64_t key = program_key(base);
     EXPECT_EQ(key, program_key(base));
     auto changed = [&](auto edit) {
@@ -124,6 +124,7 @@ TEST(ProgramKey, ChangesWithEveryField)
     EXPECT_NE(key, changed([](ProgramIdentity& id) { id.driver_version = "drv2"; }));
     EXPECT_NE(key, changed([](ProgramIdentity& id) { id.platform_name = "plat2"; }));
     EXPECT_NE(key, changed([](ProgramIdentity& id) { id.platform_version = "pver2"; }));
+    EXPECT_NE(key, changed([](ProgramIdentity& id) { id.work_groups = "64x4,64"; }));
     // Field boundaries count: moving a character from one field to the next is another key.
     EXPECT_NE(key, changed([](ProgramIdentity& id) { id.source = "sr", id.options = "c-O"; }));
 }

@@ -123,8 +123,9 @@ TEST_F(OpenClSeed, AFileOfAnotherDeviceKeyIsRefused)
     Runtime runtime = user();
     const DeviceInfo& device = runtime.device_info();
     const std::string other_device = device.device_name + " (another CPU)";
-    const std::uint64_t their_key = program_key({source, "", other_device, device.device_version,
-                                                 device.driver_version, device.platform_name, device.platform_version});
+    const std::string groups = to_string(runtime.work_groups());
+    const std::uint64_t their_key = program_key({source, "", other_device, device.device_version, device.driver_version,
+                                                 device.platform_name, device.platform_version, groups});
     const ProgramCache seed_files = ProgramCache::seed(seed_dir());
     const fs::path ours = seed_files.file_for(runtime.cache_key(source, ""));
     fs::rename(ours, seed_files.file_for(their_key));
@@ -197,16 +198,18 @@ TEST_F(OpenClSeed, ADamagedSeedFallsBackToTheSourceBuild)
 TEST_F(OpenClSeed, AStoredBinaryHoldsTheWorkGroupFunctionOfTheFixedLocalSize)
 {
     Runtime runtime(DeviceChoice::Any, ProgramCache(seed_dir()), ProgramCache());
+    const WorkGroups& g = runtime.work_groups();
     const std::vector<std::pair<detail::KernelId, std::string>> entries = {
-        {detail::KernelId::vsm_exact, "/64-1-1-goffs0-smallgrid/"},       // per pixel
-        {detail::KernelId::sat_bands_exact, "/1-1-1-goffs0-smallgrid/"},  // per task
+        {detail::KernelId::vsm_exact,  // per pixel
+         "/" + std::to_string(g.pixel_width) + "-" + std::to_string(g.pixel_height) + "-1-goffs0-smallgrid/"},
+        {detail::KernelId::sat_bands_exact, "/" + std::to_string(g.task) + "-1-1-goffs0-smallgrid/"},  // per task
     };
     for (const auto& [id, folder] : entries) {
         for (const bool primed : {true, false}) {
             SCOPED_TRACE(std::string(detail::kernel_name(id)) + (primed ? ", launched once" : ", never launched"));
             const std::string source = testing::unique_line() + program_source(id);
             Runtime::BeforeStore prime;
-            if (primed) prime = [&](const cl::Program& p) { prime_kernel(runtime.context(), runtime.queue(), p, id); };
+            if (primed) prime = [&](const cl::Program& p) { prime_kernel(runtime.context(), runtime.queue(), p, id, g); };
             runtime.build(source, kProgramOptions, prime);
             const auto binary = runtime.program_cache().load(runtime.cache_key(source, kProgramOptions));
             ASSERT_TRUE(binary) << runtime.last_cache_note();
