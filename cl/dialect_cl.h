@@ -152,7 +152,11 @@ PN_FN uint pn_ulast_value(uint v) { return v; }
     const int pn_active = 1;                                  \
     (void)pn_lane_x;                                          \
     (void)pn_active
+/* The launch's count is tested first: a work-item past it (the launch
+ * rounds up to whole work-groups, cl/opencl_work_groups.h; a launch of no
+ * tasks, cl/opencl_prime.h, has only such work-items) returns before the
+ * kernel's own count, whose parameters may then be zeros, is evaluated. */
 #define PN_TASK_ARGS int pn_task_count
 #define PN_TASK_BEGIN(count)                                  \
     const int pn_task = (int)get_global_id(0);                \
-    if (pn_task >= (count)) return
+    if (pn_task >= pn_task_count || pn_task >= (count)) return

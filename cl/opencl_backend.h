@@ -4,8 +4,9 @@
 // each schedule that differs (table builds, bilateral, SDF) in its family's
 // file (cl/opencl_<family>.cpp), all through launch<K> (cl/opencl_launch.h).
 //
-// Schedule: per-pixel kernels run one work-item per pixel (the driver picks the
-// work-group size); per-task kernels one work-item per task (a band of rows).
+// Schedule: per-pixel kernels run one work-item per pixel, per-task kernels one
+// work-item per task (a band of rows), in work-groups of a fixed size
+// (cl/opencl_work_groups.h).
 #pragma once
 
 #include <memory>

@@ -2,7 +2,8 @@
 // buffers..., params) binds the buffers and then the parameter struct of the
 // kernel table's entry K (kernels/kernel_table.h) by a fold over the
 // arguments, then the shape's last argument (pixel: the first row, 0; task:
-// the task count), and enqueues one work-item per pixel or per task.
+// the task count), and enqueues one work-item per pixel or per task, in
+// work-groups of the device's fixed size (cl/opencl_work_groups.h says why).
 //
 // A DeviceBuffer<P> is a cl::Buffer that the kernel sees as the pointer type P
 // the table gives the argument (PN_IN(T) -> const T*, PN_OUT(T) and
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "cl/opencl_programs.h"
+#include "cl/opencl_work_groups.h"
 #include "host/backend/kernel_id.h"
 #include "penumbra/image.h"
 #include "penumbra/moment_table.h"
@@ -150,11 +152,18 @@ void bind(cl::Kernel& kernel, cl_uint index, const Params& params)
     kernel.setArg(index, sizeof(Params), &params);
 }
 
-inline cl::NDRange global_range(Pixels pixels)
+// The range rounded up to whole work-groups (cl/opencl_work_groups.h).
+inline cl::NDRange global_range(Pixels pixels, const WorkGroups& groups)
 {
-    return cl::NDRange(std::size_t(pixels.width), std::size_t(pixels.height));
+    return cl::NDRange(round_up(std::size_t(pixels.width), groups.pixel_width),
+                       round_up(std::size_t(pixels.height), groups.pixel_height));
 }
-inline cl::NDRange global_range(Tasks tasks) { return cl::NDRange(std::size_t(tasks.count)); }
+inline cl::NDRange global_range(Tasks tasks, const WorkGroups& groups)
+{
+    return cl::NDRange(round_up(std::size_t(tasks.count), groups.task));
+}
+inline cl::NDRange local_range(Pixels, const WorkGroups& groups) { return groups.pixel(); }
+inline cl::NDRange local_range(Tasks, const WorkGroups& groups) { return groups.tasks(); }
 // The shape's last argument: PN_PIXEL_ARGS (the launch's first row) or PN_TASK_ARGS.
 inline int shape_argument(Pixels) { return 0; }
 inline int shape_argument(Tasks tasks) { return tasks.count; }
@@ -174,7 +183,9 @@ void launch(KernelPrograms& programs, const cl::CommandQueue& queue, Range range
     cl_uint index = 0;
     (launch_detail::bind(kernel, index++, args), ...);
     kernel.setArg(index, launch_detail::shape_argument(range));
-    queue.enqueueNDRangeKernel(kernel, cl::NullRange, launch_detail::global_range(range));
+    const WorkGroups& groups = programs.work_groups();
+    queue.enqueueNDRangeKernel(kernel, cl::NullRange, launch_detail::global_range(range, groups),
+                               launch_detail::local_range(range, groups));
 }
 
 }  // namespace penumbra::cl_backend

@@ -1,5 +1,7 @@
 #include "cl/opencl_programs.h"
 
+#include "cl/opencl_prime.h"
+
 namespace penumbra::cl_backend {
 
 using detail::KernelFamily;
@@ -45,7 +47,12 @@ void KernelPrograms::build_locked(KernelId id)
 {
     const int k = static_cast<int>(id);
     if (built_[k]) return;
-    const cl::Program program = runtime_.build(program_source(id), kProgramOptions);
+    // Launched once before its binary is stored, so that the binary holds the
+    // work-group function of the fixed local size (cl/opencl_prime.h).
+    const auto prime = [&](const cl::Program& built) {
+        prime_kernel(runtime_.context(), runtime_.queue(), built, id, runtime_.work_groups());
+    };
+    const cl::Program program = runtime_.build(program_source(id), kProgramOptions, prime);
     build_seconds_ += runtime_.last_build_seconds();
     const std::string name(detail::kernel_name(id));
     kernels_[k] = translate_cl_errors([&] { return cl::Kernel(program, name.c_str()); });

@@ -55,6 +55,8 @@ public:
     double build_seconds() const;
 
     std::mutex& launch_lock() { return launch_mutex_; }
+    // The local sizes of every launch on this device (cl/opencl_work_groups.h).
+    const WorkGroups& work_groups() const { return runtime_.work_groups(); }
 
 private:
     void build_locked(detail::KernelId id);

@@ -175,6 +175,7 @@ DeviceInfo describe(const cl::Platform& platform, const cl::Device& device)
     info.is_cpu = (type & CL_DEVICE_TYPE_CPU) != 0;
     info.type = device_type_name(type);
     info.compute_units = device.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+    info.max_work_group_size = device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
     info.global_memory_bytes = device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
     return info;
 }
@@ -312,12 +313,14 @@ static cl::Context process_context(const cl::Device& device)
     return contexts->back().second;
 }
 
-Runtime::Runtime(DeviceChoice choice, ProgramCache cache) : cache_(std::move(cache))
+Runtime::Runtime(DeviceChoice choice, ProgramCache cache, ProgramCache seed)
+    : cache_(std::move(cache)), seed_(std::move(seed))
 {
     const Discovery discovery = discover();
     const FoundDevice& chosen = choose(discovery, choice);
     device_ = chosen.device;
     info_ = chosen.info;
+    work_groups_ = work_groups_for(info_.max_work_group_size);
     // The moment kernels form per-window moments in double (kernels/dialect.h):
     // a device without fp64 would fail to build them, so refuse it here, by name.
     const std::string extensions = translate_cl_errors([&] { return device_.getInfo<CL_DEVICE_EXTENSIONS>(); });
@@ -331,18 +334,17 @@ Runtime::Runtime(DeviceChoice choice, ProgramCache cache) : cache_(std::move(cac
     });
 }
 
-cl::Program Runtime::build(const std::string& source, const std::string& options)
+cl::Program Runtime::build(const std::string& source, const std::string& options, const BeforeStore& before_store)
 {
     const auto start = std::chrono::steady_clock::now();
     const std::uint64_t key = cache_key(source, options);
     last_cache_note_.clear();
 
     const DriverCacheLock serialised;  // PoCL's cache is shared with other runs (program_cache.h)
-    std::optional<cl::Program> program;
-    if (auto binary = cache_.load(key, &last_cache_note_)) program = build_from_binary(*binary, options);
-    last_build_from_cache_ = program.has_value();
+    std::optional<cl::Program> program = build_from_stores(key, options);
     if (!program) {
         program = build_from_source(source, options);
+        if (before_store) translate_cl_errors([&] { before_store(*program); });
         store_binary(*program, key);
         record_driver_cache();  // PoCL wrote this program's files: record them now
     }
@@ -352,21 +354,41 @@ cl::Program Runtime::build(const std::string& source, const std::string& options
 
 std::uint64_t Runtime::cache_key(const std::string& source, const std::string& options) const
 {
+    const std::string groups = to_string(work_groups_);
     return program_key({source, options, info_.device_name, info_.device_version, info_.driver_version,
-                        info_.platform_name, info_.platform_version});
+                        info_.platform_name, info_.platform_version, groups});
 }
 
-// A binary that passed the cache's checksum can still be refused by the driver
-// (another driver build with the same version string, say): then build from source.
+// The user's cache first, then the seed. The seed is not copied into the
+// cache: reading it again costs what reading the copy would.
+std::optional<cl::Program> Runtime::build_from_stores(std::uint64_t key, const std::string& options)
+{
+    std::optional<cl::Program> program;
+    if (auto binary = cache_.load(key, &last_cache_note_)) program = build_from_binary(*binary, options, "cached");
+    last_build_from_cache_ = program.has_value();
+    last_build_from_seed_ = false;
+    if (program || !seed_.enabled()) return program;
+    std::string seed_note;
+    if (auto binary = seed_.load(key, &seed_note)) program = build_from_binary(*binary, options, "seed");
+    else append_problem(last_cache_note_, "seed: " + seed_note);
+    last_build_from_seed_ = program.has_value();
+    if (program) last_cache_note_.clear();
+    return program;
+}
+
+// A binary that passed the checksum can still be refused by the driver
+// (another driver build with the same version string, or a seed made for
+// another CPU: CL_INVALID_BINARY): then build from source.
 std::optional<cl::Program> Runtime::build_from_binary(const std::vector<unsigned char>& binary,
-                                                      const std::string& options)
+                                                      const std::string& options, std::string_view origin)
 {
     try {
         cl::Program program(context_, {device_}, cl::Program::Binaries{binary});
         program.build(device_, options.c_str());
         return program;
     } catch (const cl::Error& error) {
-        last_cache_note_ = "cached binary refused: " + describe_failure(error.what(), error.err());
+        append_problem(last_cache_note_,
+                       std::string(origin) + " binary refused: " + describe_failure(error.what(), error.err()));
         return std::nullopt;
     }
 }

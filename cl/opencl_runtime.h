@@ -15,12 +15,14 @@
 #include <CL/opencl.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "cl/opencl_work_groups.h"
 #include "cl/program_cache.h"
 #include "penumbra/error.h"
 
@@ -54,6 +56,7 @@ struct DeviceInfo {
     bool is_cpu = false;
     std::string type;  // "CPU", "GPU", "accelerator", "custom", joined by '+'
     unsigned compute_units = 0;
+    std::size_t max_work_group_size = 0;
     std::uint64_t global_memory_bytes = 0;
 };
 
@@ -83,27 +86,38 @@ class Runtime {
 public:
     // Throws Error(Unavailable) when no device fits `choice`, Error(Backend) when
     // the context or queue cannot be created. `cache` holds program binaries
-    // between runs; pass ProgramCache() to disable it.
+    // between runs; `seed` is read, never written, when `cache` misses (the
+    // binaries made at build time, cl/program_seed.h). Pass ProgramCache() to
+    // disable either.
     explicit Runtime(DeviceChoice choice = DeviceChoice::Any,
-                     ProgramCache cache = ProgramCache::in_default_directory());
+                     ProgramCache cache = ProgramCache::in_default_directory(),
+                     ProgramCache seed = ProgramCache::installed_seed());
 
     const cl::Context& context() const { return context_; }
     const cl::Device& device() const { return device_; }
     const cl::CommandQueue& queue() const { return queue_; }
     const DeviceInfo& device_info() const { return info_; }
     const ProgramCache& program_cache() const { return cache_; }
+    const WorkGroups& work_groups() const { return work_groups_; }
+
+    // Runs on a program built from source before its binary is stored
+    // (KernelPrograms launches its kernel once: cl/opencl_prime.h).
+    using BeforeStore = std::function<void(const cl::Program&)>;
 
     // Builds `source` with `options` for the device, from the binary cache when it
-    // holds a valid entry, else from source (then stores the binary). A compile
-    // error throws Error(Backend) naming clBuildProgram, the error name, the
-    // options and the whole build log.
-    cl::Program build(const std::string& source, const std::string& options);
+    // holds a valid entry, else from the seed, else from source (then runs
+    // `before_store` and stores the binary). A compile error throws
+    // Error(Backend) naming clBuildProgram, the error name, the options and the
+    // whole build log.
+    cl::Program build(const std::string& source, const std::string& options, const BeforeStore& before_store = {});
 
     // Wall time of the last build() call, cache lookup and store included.
     double last_build_seconds() const { return last_build_seconds_; }
     bool last_build_from_cache() const { return last_build_from_cache_; }
-    // Why the last build did not come from the cache (empty after a hit), or why
-    // its binary could not be stored: for `penumbra info` and debugging.
+    bool last_build_from_seed() const { return last_build_from_seed_; }
+    // Why the last build did not come from the cache (empty after a hit), nor
+    // from the seed, or why its binary could not be stored: for `penumbra info`
+    // and debugging.
     const std::string& last_cache_note() const { return last_cache_note_; }
 
     // The key build() files this program under in program_cache().
@@ -111,7 +125,8 @@ public:
 
 private:
     std::optional<cl::Program> build_from_binary(const std::vector<unsigned char>& binary,
-                                                 const std::string& options);
+                                                 const std::string& options, std::string_view origin);
+    std::optional<cl::Program> build_from_stores(std::uint64_t key, const std::string& options);
     cl::Program build_from_source(const std::string& source, const std::string& options) const;
     void store_binary(const cl::Program& program, std::uint64_t key);
 
@@ -119,9 +134,12 @@ private:
     cl::Device device_;
     cl::CommandQueue queue_;
     DeviceInfo info_;
+    WorkGroups work_groups_{};
     ProgramCache cache_;
+    ProgramCache seed_;
     double last_build_seconds_ = 0.0;
     bool last_build_from_cache_ = false;
+    bool last_build_from_seed_ = false;
     std::string last_cache_note_;
 };
 

@@ -90,6 +90,9 @@ struct ProgramIdentity {
     std::string_view driver_version;
     std::string_view platform_name;
     std::string_view platform_version;
+    // The launches' local sizes (cl/opencl_work_groups.h): a binary holds the
+    // work-group functions of the sizes it was launched with.
+    std::string_view work_groups;
 };
 
 std::uint64_t program_key(const ProgramIdentity& identity);
@@ -103,6 +106,12 @@ public:
 
     // cache_directory()/binaries
     static ProgramCache in_default_directory();
+    // The binaries made at build time (cl/program_seed.h): read when the user's
+    // cache misses, never written at run time. Its files may be owned by root
+    // (a package's install) as well as by this user.
+    static ProgramCache seed(std::filesystem::path directory);
+    // seed(seed_directory()), or a disabled cache when there is none.
+    static ProgramCache installed_seed();
 
     bool enabled() const { return !directory_.empty(); }
     const std::filesystem::path& directory() const { return directory_; }
@@ -121,6 +130,7 @@ public:
 
 private:
     std::filesystem::path directory_;
+    bool root_may_own_ = false;  // a seed's files may be the installer's
 };
 
 }  // namespace penumbra::cl_backend

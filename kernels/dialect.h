@@ -105,6 +105,11 @@
  *     the image). Loads and stores at (pn_x, pn_y) are the lanes' own pixels.
  *   Per task:  PN_KERNEL void name(<buffers>, const Params p, PN_TASK_ARGS)
  *              { PN_TASK_BEGIN(count); ... }   defines int pn_task in [0, count).
+ *   The begin macro is an entry's first statement, and `count` is written
+ *   inside it, not computed before it: the OpenCL backend launches every
+ *   entry once with zeroed parameters and no tasks before it stores the
+ *   program's binary (cl/opencl_prime.h), and then nothing but the bounds
+ *   test may run (a zero divisor in `count` must not be reached).
  *
  * Helpers below are written in the dialect itself and so exist in every binding.
  */

@@ -79,8 +79,7 @@ PN_TABLE_VARIANTS(PN_ENCODED_BAND)
 PN_KERNEL void encoded_bands_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T* table, PN_GLOBAL T* columns, \
                                        PN_GLOBAL int* bad_rows, const EncodedSatParams p, PN_TASK_ARGS)        \
 {                                                                                                              \
-    const int bands = (p.depth.height + p.band_height - 1) / p.band_height;                                    \
-    PN_TASK_BEGIN(bands);                                                                                      \
+    PN_TASK_BEGIN((p.depth.height + p.band_height - 1) / p.band_height);                                       \
     const int y0 = pn_task * p.band_height;                                                                    \
     const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;                  \
     encoded_band_##variant(depth, table, columns, bad_rows, p, pn_task, y0, y1);                               \

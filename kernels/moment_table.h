@@ -227,8 +227,7 @@ PN_FN void sat_block_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
 PN_KERNEL void sat_bands_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T* table, PN_GLOBAL T* carry,           \
                                    PN_GLOBAL T* columns, PN_GLOBAL int* bad_rows, const SatParams p, PN_TASK_ARGS) \
 {                                                                                                                  \
-    const int bands = (p.depth.height + p.band_height - 1) / p.band_height;                                        \
-    PN_TASK_BEGIN(bands);                                                                                          \
+    PN_TASK_BEGIN((p.depth.height + p.band_height - 1) / p.band_height);                                           \
     const int y0 = pn_task * p.band_height;                                                                        \
     const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;                      \
     sat_block_##variant(depth, table, carry, columns, pn_task, bad_rows, p, 0, p.depth.width, y0, y1);             \

@@ -141,6 +141,8 @@ typedef struct {
     float pivot_floor;       /* msm: a Hankel pivot (depth^2 units) at or below this is zero (kernels/msm.h) */
     float depth_bias;        /* subtracted from the receiver's depth */
     float light_size;        /* msm_soft: as ChebyshevParams' */
+    float plane_bias;        /* msm_soft: share of the receiver plane's drop over each window (0 = off) */
+    float plane_bias_max;    /* msm_soft: its largest value, depth units */
     float min_variance;      /* evsm: depth^2, scaled by the warp's squared slope */
     float bleed;             /* evsm: light-bleeding reduction in [0, 1) */
     float exponent_positive; /* evsm: c+ */

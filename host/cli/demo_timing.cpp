@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <numeric>
 #include <random>
+
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 namespace penumbra::cli {
 namespace {
@@ -45,11 +50,27 @@ FrameTimes summarize(const Samples& s)
     return {median(s.map_ms), median(s.receiver_ms), median(s.frame_ms), *low, *high, int(s.frame_ms.size())};
 }
 
+// An engine allocates its tables once and rebuilds them in place each frame;
+// the methods' build steps return new ones. glibc serves every block above
+// 32 MB (a 2048^2 MSM or EVSM4 table is 200 MB) by a fresh mmap, so each
+// frame page-faulted its table anew and the map step of `large` varied from
+// 24 to 146 ms between two runs (docs/demo.md). Freed blocks are kept in the
+// process instead, so that from the warm-up on a table lands on pages
+// already mapped, as an engine's would.
+void keep_freed_memory()
+{
+#ifdef __GLIBC__
+    mallopt(M_MMAP_MAX, 0);
+    mallopt(M_TRIM_THRESHOLD, INT_MAX);
+#endif
+}
+
 }  // namespace
 
 std::vector<FrameTimes> time_settings(Context& context, const std::vector<const DemoSetting*>& settings,
                                       const DemoFrame& frame, const reference::Receivers& timed, int repetitions)
 {
+    keep_freed_memory();
     std::vector<Samples> samples(settings.size());
     for (const DemoSetting* setting : settings) {  // warm-up, not kept
         Samples ignored;

@@ -23,7 +23,8 @@ nlohmann::json to_json(const SystemInfo& info)
                   {"warnings", info.auto_warnings}}},
         {"cpu", {{"isas", info.cpu_isas}, {"chosen_isa", info.chosen_isa}, {"isa_reason", info.isa_reason}}},
         {"opencl", {{"built", info.opencl_built}, {"devices", devices}, {"problem", info.opencl_problem},
-                    {"cache_directory", info.cache_directory}}},
+                    {"cache_directory", info.cache_directory}, {"seed_directory", info.seed_directory},
+                    {"seed_programs", info.seed_programs}}},
     };
     if (info.opencl_build_seconds >= 0) j["opencl"]["program_build_seconds"] = info.opencl_build_seconds;
     if (!info.opencl_build_error.empty()) j["opencl"]["program_build_error"] = info.opencl_build_error;
@@ -45,6 +46,8 @@ void print_text(const SystemInfo& info)
         std::cout << "  " << d.platform << " (" << d.platform_version << "): " << d.name << " [" << d.type << ", "
                   << d.compute_units << " compute units, " << d.version << ", driver " << d.driver << "]\n";
     if (!info.cache_directory.empty()) std::cout << "opencl program cache: " << info.cache_directory << "\n";
+    if (!info.seed_directory.empty())
+        std::cout << "opencl program seed: " << info.seed_directory << " (" << info.seed_programs << " programs)\n";
     if (info.opencl_build_seconds >= 0)
         std::cout << "opencl program build: " << info.opencl_build_seconds << " s\n";
     if (!info.opencl_build_error.empty()) std::cout << "opencl program build failed: " << info.opencl_build_error << "\n";

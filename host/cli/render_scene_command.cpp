@@ -5,7 +5,9 @@
 //           first surface, the midpoint of the first two or the second, Woo 1992)
 //   RX.exr  channels u, v, z (light space), P.x P.y P.z (world position),
 //           N.x N.y N.z (normal), mask (1 where the receiver is valid)
-//   GT.exr  channel Y: the fraction of the area light visible, in [0, 1]
+//   GT.exr  channel Y: the fraction of the light that reaches the receiver, in
+//           [0, 1]: the mean transmittance to the area light's samples, or the
+//           exact transmittance to a point light (one ray; --samples unused)
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -56,6 +58,20 @@ int strata_for_samples(int samples)
 
 namespace {
 
+std::string scene_list()
+{
+    std::string names;
+    for (const std::string& name : reference::builtin_scene_names(reference::SceneSet::All))
+        names += (names.empty() ? "" : ", ") + name;
+    return names;
+}
+
+std::string rays_per_receiver(const reference::Scene& scene, int strata)
+{
+    if (scene.light.shape == reference::LightShape::Point) return "1 ray each, point light";
+    return std::to_string(strata * strata) + " rays each";
+}
+
 reference::ShadowDepth parse_shadow_depth(const std::string& text)
 {
     try {
@@ -73,13 +89,15 @@ int render_scene_command(const std::vector<std::string>& argv)
         std::cout << "usage: penumbra render-scene NAME|SCENE.json --shadow-map SM.exr --receivers RX.exr --truth GT.exr\n"
                      "                             [--map-size N] [--view-size WxH] [--samples S]\n"
                      "                             [--depth first|midpoint|second]\n"
-                     "  scenes: contact, overlap, fence, grazing, large (or a JSON scene file)\n"
+                  << "  scenes: " << scene_list() << " (or a JSON scene file)\n"
                      "  --map-size N     shadow map N x N (default: the scene's own, e.g. 1024)\n"
                      "  --view-size WxH  receivers seen from the view camera (default 320x240)\n"
-                     "  --samples S      ground-truth rays per receiver, stratified (default 1024)\n"
+                     "  --samples S      ground-truth rays per receiver, stratified (default 1024); a point\n"
+                     "                   light's truth is exact, one ray each\n"
                      "  --depth D        what the shadow map stores along each light ray (Woo 1992):\n"
                      "                   first (default), midpoint of the first two surfaces, or the\n"
-                     "                   second; the far plane (1) stands in for a missing second\n";
+                     "                   second; the far plane (1) stands in for a missing second. Every\n"
+                     "                   surface of opacity > 0 is a depth; fog is not\n";
         return 0;
     }
     if (argv.empty() || argv[0].rfind("--", 0) == 0) throw UsageError{"the scene name comes first (see --help)"};
@@ -107,8 +125,7 @@ int render_scene_command(const std::vector<std::string>& argv)
     stage_exr(outputs, gt_path, truth, {"Y"});
     outputs.publish();
     std::cout << "wrote " << sm_path << ", " << rx_path << ", " << gt_path << " (" << scene.name << ", map "
-              << map_size << "^2 " << reference::shadow_depth_name(depth) << " depth, " << view.width << "x" << view.height << " receivers, " << strata * strata
-              << " rays each)\n";
+              << map_size << "^2 " << reference::shadow_depth_name(depth) << " depth, " << view.width << "x" << view.height << " receivers, " << rays_per_receiver(scene, strata) << ")\n";
     return 0;
 }
 

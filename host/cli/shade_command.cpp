@@ -9,6 +9,7 @@
 // library's method table (penumbra/methods.h); this file reads the files,
 // runs the entry and names, for an error, the flag or file at fault.
 #include <cmath>
+#include <future>
 #include <iostream>
 #include <set>
 #include <string>
@@ -109,9 +110,11 @@ int shade_command(const std::vector<std::string>& argv)
     try {
         const Method& method = find_method(method_name);
         const MethodSettings settings = parse_method_settings(method, given_options(args));
+        // The backend starts while the inputs are read (OpenCL: tens of ms).
+        std::future<Context> starting = start_context(ContextOptions{backend, {}});
         const Image map = read_input(files.shadow_map, {"Z"}, "shadow map");
         const Image receivers = read_input(files.receivers, receiver_channels(settings), "receivers image");
-        Context context(ContextOptions{backend, {}});
+        Context context = starting.get();
         for (const std::string& warning : context.warnings())
             std::cerr << "penumbra shade: warning: " << warning << "\n";
         write_exr(out_path, method.run(context, map, receivers, settings), {"Y"});

@@ -124,6 +124,14 @@ Context::Context(ContextOptions options)
     }
 }
 
+std::future<Context> start_context(ContextOptions options)
+{
+#if PENUMBRA_OPENCL
+    cl_backend::prepare_driver_cache_environment();  // sets POCL_CACHE_DIR: before the thread starts
+#endif
+    return std::async(std::launch::async, [options = std::move(options)] { return Context(options); });
+}
+
 Context::~Context() = default;
 Context::Context(Context&&) noexcept = default;
 Context& Context::operator=(Context&&) noexcept = default;

@@ -183,6 +183,12 @@ const std::vector<MethodOption>& method_options()
          "3.05e-5 = two 16-bit steps (msm*), 0 (evsm*), 1e-3 (pcf*), 5e-4 (pcss), 0 = the cone's tip (burley)",
          &kDepthBiasRange, false,
          set_float<&S::depth_bias, kDepthBiasRange>},
+        {"plane-bias", "S",
+         "msm-soft: each window's depth lowered by S x the receiver plane's drop inside it (1: a planar receiver "
+         "never shadows itself in a wide window; 0 = off)",
+         "0", &kPlaneBiasRange, false, set_float<&S::plane_bias, kPlaneBiasRange>},
+        {"plane-bias-max", "B", "msm-soft: the largest plane bias, depth units", "0.02", &kPlaneBiasMaxRange, false,
+         set_float<&S::plane_bias_max, kPlaneBiasMaxRange>},
         {"quantize", "16",
          "MSM's optimized 16-bit storage (I3D 2015; 16 B/texel, not 48): moves visibility by up to 0.56",
          "none (exact 48-bit tables)", nullptr, false, set_quantization},

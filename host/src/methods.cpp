@@ -69,8 +69,8 @@ void shade_msm(Context& context, const PreparedMap& prepared, const Image& recei
 void shade_msm_soft(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                     Image& out)
 {
-    msm_soft(context, prepared.table<MsmTable>(), receivers, MsmSoftOptions{s.light_size, s.moment_bias, s.depth_bias},
-             out);
+    const MsmSoftOptions options{s.light_size, s.moment_bias, s.depth_bias, s.plane_bias, s.plane_bias_max};
+    msm_soft(context, prepared.table<MsmTable>(), receivers, options, out);
 }
 
 // EVSM2 keeps the positive warp only (2 channels), EVSM4 both (4).
@@ -180,7 +180,8 @@ const std::vector<Method>& methods()
         {"msm", "moment shadow maps: four moments, Hamburger bound (Peters & Klein 2015)",
          {"radius", "moment-bias", "depth-bias", "quantize"}, prepare_msm, shade_msm},
         {"msm-soft", "moment soft shadows: blocker search on four moments (Peters et al. 2016)",
-         {"light-size", "moment-bias", "depth-bias", "quantize"}, prepare_msm_table, shade_msm_soft},
+         {"light-size", "moment-bias", "depth-bias", "plane-bias", "plane-bias-max", "quantize"}, prepare_msm_table,
+         shade_msm_soft},
         {"evsm2", "exponential variance shadow maps, positive warp (Lauritzen & McCool 2008)",
          {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, prepare_evsm<2>, shade_evsm<2>},
         {"evsm4", "exponential variance shadow maps, both warps (Lauritzen & McCool 2008)",

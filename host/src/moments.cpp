@@ -12,6 +12,7 @@
 #include "window_limits.h"
 #include "penumbra/error.h"
 #include "penumbra/parameter_range.h"
+#include "penumbra/pcf.h"
 
 namespace penumbra {
 namespace {
@@ -267,6 +268,19 @@ void msm(Context& context, const Image& depth, const Image& receivers, const Msm
     detail::checked_direct_lookup<KernelId::msm_direct>(context.impl(), op, depth, receivers, p, out);
 }
 
+namespace {
+
+// The receivers with the plane msm_soft's plane bias reads (planes 3-5:
+// dz/du, dz/dv, the flag), made as the percentage-closer family makes them.
+Image receiver_planes(const std::string& op, const Image& receivers)
+{
+    DepthBias plane;
+    plane.mode = BiasMode::ReceiverPlane;
+    return pcf_receivers(receivers, plane, op);
+}
+
+}  // namespace
+
 void msm_soft(Context& context, const MsmTable& table, const Image& receivers, const MsmSoftOptions& options,
               Image& out)
 {
@@ -274,12 +288,18 @@ void msm_soft(Context& context, const MsmTable& table, const Image& receivers, c
     check_table(op, table.sums, 4);
     check_receivers(op, receivers, out);
     const int max_radius = detail::checked_search_radius(op, options.light_size, table.sums);
-    MomentParams p = base_params(table.sums, receivers, out);
+    check(kPlaneBiasRange, options.plane_bias, op);
+    check(kPlaneBiasMaxRange, options.plane_bias_max, op);
+    const Image planes = options.plane_bias > 0.0f ? receiver_planes(op, receivers) : Image{};
+    const Image& rx = options.plane_bias > 0.0f ? planes : receivers;
+    MomentParams p = base_params(table.sums, rx, out);
     set_msm_biases(p, op, table.quantization, options.moment_bias, options.depth_bias);
     p.light_size = options.light_size;
     p.max_radius = max_radius;
+    p.plane_bias = options.plane_bias;
+    p.plane_bias_max = options.plane_bias_max;
     detail::checked_table_lookup<KernelId::msm_soft_float, KernelId::msm_soft_exact>(context.impl(), op, table.sums,
-                                                                                     receivers, p, out);
+                                                                                     rx, p, out);
 }
 
 // ---- EVSM ----------------------------------------------------------------------

@@ -1,6 +1,7 @@
 #include "penumbra/system_info.h"
 
 #include <cstdlib>
+#include <filesystem>
 
 #include "penumbra/config.h"
 #include "penumbra/context.h"
@@ -10,10 +11,24 @@
 #include "cl/opencl_backend.h"
 #include "cl/opencl_runtime.h"
 #include "cl/program_cache.h"
+#include "cl/program_seed.h"
 #endif
 
 namespace penumbra {
 namespace {
+
+#if PENUMBRA_OPENCL
+// The program files of the seed (cl/program_seed.h); 0 when it is missing.
+int count_seed_programs(const std::string& directory)
+{
+    std::error_code error;
+    int count = 0;
+    if (directory.empty()) return 0;
+    for (std::filesystem::directory_iterator it(directory, error), end; !error && it != end; it.increment(error))
+        count += it->path().extension() == ".bin" ? 1 : 0;
+    return count;
+}
+#endif
 
 // A context builds a kernel's program on first use; `info --verbose` times
 // the builds of all of them, as a run that uses every method would.
@@ -42,6 +57,8 @@ void describe_opencl(SystemInfo& info)
         info.opencl_devices.push_back(
             {d.platform_name, d.platform_version, d.device_name, d.device_version, d.driver_version, d.type, d.compute_units});
     info.cache_directory = cl_backend::cache_directory();
+    info.seed_directory = cl_backend::seed_directory();
+    info.seed_programs = count_seed_programs(info.seed_directory);
     if (info.opencl_devices.empty() && info.opencl_problem.empty()) info.opencl_problem = "no OpenCL device found";
 #else
     info.opencl_problem = "this build has no OpenCL backend (PENUMBRA_OPENCL=OFF)";

@@ -9,33 +9,10 @@
 
 #include "penumbra/error.h"
 #include "penumbra/reference/scene.h"
+#include "scene_parts.h"
 
 namespace penumbra::reference {
 namespace {
-
-Plane ground() { return Plane{{0, 0, 0}, {0, 1, 0}}; }
-
-// Aims the light (and so its camera) from `center` at `target`.
-AreaLight square_light(Vec3 center, Vec3 target, double side)
-{
-    AreaLight light;
-    light.shape = LightShape::Rectangle;
-    light.center = center;
-    light.normal = normalize(target - center);
-    light.up = {0, 1, 0};  // u across, v down the map, as in a photo taken from the light
-    light.width = light.height = side;
-    return light;
-}
-
-LightCamera perspective(double near, double far, double fov_degrees)
-{
-    LightCamera camera;
-    camera.projection = Projection::Perspective;
-    camera.near = near;
-    camera.far = far;
-    camera.fov_degrees = fov_degrees;
-    return camera;
-}
 
 // Contact hardening: a unit sphere resting on the ground and a capsule lying
 // with one end on the ground and the other against the sphere. Shadows start
@@ -178,19 +155,23 @@ Scene large_scene()
 struct Entry {
     const char* name;
     Scene (*make)();
+    SceneSet set;
 };
 
 constexpr Entry kScenes[] = {
-    {"contact", contact_scene}, {"overlap", overlap_scene}, {"fence", fence_scene},
-    {"grazing", grazing_scene}, {"large", large_scene},
+    {"contact", contact_scene, SceneSet::Opaque}, {"overlap", overlap_scene, SceneSet::Opaque},
+    {"fence", fence_scene, SceneSet::Opaque},     {"grazing", grazing_scene, SceneSet::Opaque},
+    {"large", large_scene, SceneSet::Opaque},     {"hair", hair_scene, SceneSet::Deep},
+    {"fog", fog_scene, SceneSet::Deep},           {"layers", layers_scene, SceneSet::Deep},
 };
 
 }  // namespace
 
-std::vector<std::string> builtin_scene_names()
+std::vector<std::string> builtin_scene_names(SceneSet set)
 {
     std::vector<std::string> names;
-    for (const Entry& entry : kScenes) names.emplace_back(entry.name);
+    for (const Entry& entry : kScenes)
+        if (set == SceneSet::All || entry.set == set) names.emplace_back(entry.name);
     return names;
 }
 

@@ -41,7 +41,7 @@ Image ground_truth(const Scene& scene, const Receivers& receivers, const GroundT
             "strata must be in [1, 4096] (got " + std::to_string(options.strata) + ")");
     validate_scene(scene, "ground_truth");
     require_receivers(receivers);
-    const PreparedScene prepared(scene.primitives);
+    const PreparedScene prepared(scene);
     const int width = receivers.hit.width(), height = receivers.hit.height();
     Image truth(width, height, 1);
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {

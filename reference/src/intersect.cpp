@@ -54,6 +54,43 @@ Slab slab(double origin, double direction, double half)
     return {t0, t1, false};
 }
 
+// |oc + t d|^2 = r^2 with oc = o - c.
+Roots sphere_roots(const Ray& ray, const Sphere& sphere)
+{
+    const Vec3 oc = ray.origin - sphere.center;
+    const double a = dot(ray.direction, ray.direction);
+    const double half_b = dot(oc, ray.direction);
+    const double c = dot(oc, oc) - sphere.radius * sphere.radius;
+    const Vec3 closest = oc - ray.direction * (half_b / a);
+    const double discriminant = a * (sphere.radius * sphere.radius - dot(closest, closest));
+    return solve_quadratic(a, half_b, c, discriminant);
+}
+
+// Slab test (Kay and Kajiya 1986) in the box's own frame: the line's interval
+// inside the box and the axes of the faces it enters and leaves by.
+struct BoxSpan {
+    bool meets = false;
+    double entry = -INFINITY, exit = INFINITY;
+    int entry_axis = 0, exit_axis = 0;
+    Vec3 d;  // the direction in the box's frame
+};
+
+BoxSpan box_span(const Ray& ray, const OrientedBox& box)
+{
+    BoxSpan span;
+    const Vec3 o = box.rotation.apply_inverse(ray.origin - box.center);
+    span.d = box.rotation.apply_inverse(ray.direction);
+    const Slab slabs[3] = {slab(o.x, span.d.x, box.half_size.x), slab(o.y, span.d.y, box.half_size.y),
+                           slab(o.z, span.d.z, box.half_size.z)};
+    for (int axis = 0; axis < 3; ++axis) {
+        if (slabs[axis].empty) return span;
+        if (slabs[axis].entry > span.entry) span.entry = slabs[axis].entry, span.entry_axis = axis;
+        if (slabs[axis].exit < span.exit) span.exit = slabs[axis].exit, span.exit_axis = axis;
+    }
+    span.meets = span.entry <= span.exit;
+    return span;
+}
+
 std::optional<Hit> keep_nearest(std::optional<Hit> a, std::optional<Hit> b)
 {
     if (!a) return b;
@@ -100,40 +137,22 @@ std::optional<Hit> intersect(const Ray& ray, const Plane& plane, double t_min, d
 
 std::optional<Hit> intersect(const Ray& ray, const Sphere& sphere, double t_min, double t_max)
 {
-    // |oc + t d|^2 = r^2 with oc = o - c.
-    const Vec3 oc = ray.origin - sphere.center;
-    const double a = dot(ray.direction, ray.direction);
-    const double half_b = dot(oc, ray.direction);
-    const double c = dot(oc, oc) - sphere.radius * sphere.radius;
-    const Vec3 closest = oc - ray.direction * (half_b / a);
-    const double discriminant = a * (sphere.radius * sphere.radius - dot(closest, closest));
-    const auto t = first_root(solve_quadratic(a, half_b, c, discriminant), t_min, t_max);
+    const auto t = first_root(sphere_roots(ray, sphere), t_min, t_max);
     if (!t) return std::nullopt;
     return Hit{*t, (ray.at(*t) - sphere.center) / sphere.radius, -1};
 }
 
 std::optional<Hit> intersect(const Ray& ray, const OrientedBox& box, double t_min, double t_max)
 {
-    // Slab test (Kay and Kajiya 1986) in the box's own frame.
-    const Vec3 o = box.rotation.apply_inverse(ray.origin - box.center);
-    const Vec3 d = box.rotation.apply_inverse(ray.direction);
-    const Slab slabs[3] = {slab(o.x, d.x, box.half_size.x), slab(o.y, d.y, box.half_size.y),
-                           slab(o.z, d.z, box.half_size.z)};
-    double entry = -INFINITY, exit = INFINITY;
-    int entry_axis = 0, exit_axis = 0;
-    for (int axis = 0; axis < 3; ++axis) {
-        if (slabs[axis].empty) return std::nullopt;
-        if (slabs[axis].entry > entry) entry = slabs[axis].entry, entry_axis = axis;
-        if (slabs[axis].exit < exit) exit = slabs[axis].exit, exit_axis = axis;
-    }
-    if (entry > exit) return std::nullopt;
-    const double direction[3] = {d.x, d.y, d.z};
+    const BoxSpan span = box_span(ray, box);
+    if (!span.meets) return std::nullopt;
+    const double direction[3] = {span.d.x, span.d.y, span.d.z};
     const Vec3 axes[3] = {box.rotation.x, box.rotation.y, box.rotation.z};
     // Entering through a face means moving against its outward normal; leaving, along it.
-    if (inside(entry, t_min, t_max))
-        return Hit{entry, axes[entry_axis] * (direction[entry_axis] > 0 ? -1.0 : 1.0), -1};
-    if (inside(exit, t_min, t_max))
-        return Hit{exit, axes[exit_axis] * (direction[exit_axis] > 0 ? 1.0 : -1.0), -1};
+    if (inside(span.entry, t_min, t_max))
+        return Hit{span.entry, axes[span.entry_axis] * (direction[span.entry_axis] > 0 ? -1.0 : 1.0), -1};
+    if (inside(span.exit, t_min, t_max))
+        return Hit{span.exit, axes[span.exit_axis] * (direction[span.exit_axis] > 0 ? 1.0 : -1.0), -1};
     return std::nullopt;
 }
 
@@ -153,6 +172,20 @@ std::optional<Hit> intersect(const Ray& ray, const Capsule& capsule, double t_mi
         best = keep_nearest(best, intersect_cylinder_side(ray, capsule.a, axis / len, len, capsule.radius,
                                                           t_min, t_max));
     return best;
+}
+
+std::optional<Chord> chord(const Ray& ray, const Sphere& sphere)
+{
+    const Roots roots = sphere_roots(ray, sphere);
+    if (!roots.real) return std::nullopt;
+    return Chord{roots.t0, roots.t1};
+}
+
+std::optional<Chord> chord(const Ray& ray, const OrientedBox& box)
+{
+    const BoxSpan span = box_span(ray, box);
+    if (!span.meets) return std::nullopt;
+    return Chord{span.entry, span.exit};
 }
 
 }  // namespace penumbra::reference

@@ -1,32 +1,14 @@
-// Stratified sampling of the area light and the visibility of one receiver.
+// Stratified sampling of the area light and the light that reaches one
+// receiver: the mean transmittance of the segments to the light samples.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "penumbra/reference/ground_truth.h"
+#include "splitmix64.h"
 
 namespace penumbra::reference {
 namespace {
-
-// SplitMix64 (Steele, Lea and Flood 2014): a 64-bit counter pushed through a
-// bijective mixer. Cheap, stateless to seed, and good enough for jitter.
-class SplitMix64 {
-public:
-    explicit SplitMix64(std::uint64_t state) : state_(state) {}
-
-    std::uint64_t next()
-    {
-        std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    }
-    // Uniform in [0, 1): the top 53 bits as a double's mantissa.
-    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
-
-private:
-    std::uint64_t state_;
-};
 
 // Shirley and Chiu 1997: squares around the centre of [-1, 1]^2 go to circles,
 // preserving area, so equal strata of the square are equal areas of the disk.
@@ -61,19 +43,22 @@ double light_visibility(const PreparedScene& prepared, const AreaLight& light, V
     const Basis frame = basis_looking_along(light.normal, light.up);
     if (dot(position - light.center, frame.n) <= 0) return 0;
     const Vec3 origin = position + normal * (kNormalOffset * (1 + max_abs_component(position)));
+    // Direction to the light point unnormalised: t in (0, 1) spans the segment.
+    auto towards = [&](Vec3 target) { return prepared.transmittance({origin, target - origin}, 0.0, 1.0); };
+    if (light.shape == LightShape::Point) return towards(light.center);  // exact: one segment
     // Hash the stream name into the starting state: SplitMix64 walks its state
     // in steps of a fixed constant, so two raw names a multiple of that step
     // apart would give overlapping (shifted) sequences.
     SplitMix64 random(SplitMix64(stream).next());
-    int visible = 0;
+    // A sum of transmittances; with opaque surfaces and no media each is
+    // exactly 0 or 1, so the sum is the count of visible samples.
+    double arriving = 0;
     for (int j = 0; j < strata; ++j)
         for (int i = 0; i < strata; ++i) {
             const double a = (i + random.uniform()) / strata, b = (j + random.uniform()) / strata;
-            // Direction to the light point unnormalised: t in (0, 1) spans the segment.
-            const Ray ray{origin, light_point(light, frame, a, b) - origin};
-            visible += prepared.occluded(ray, 0.0, 1.0) ? 0 : 1;
+            arriving += towards(light_point(light, frame, a, b));
         }
-    return double(visible) / (double(strata) * strata);
+    return arriving / (double(strata) * strata);
 }
 
 }  // namespace penumbra::reference

@@ -48,7 +48,7 @@ std::optional<double> axis_plane_depth(const Scene& scene, const LightProjection
 double reference_receiver_z(const Scene& scene, const LightProjection& projection)
 {
     if (const auto depth = axis_plane_depth(scene, projection)) return projection.z_of(*depth);
-    const auto hit = PreparedScene(scene.primitives)
+    const auto hit = PreparedScene(scene)
                          .closest_hit(projection.ray_through(0.5, 0.5), scene.light_camera.near,
                                       scene.light_camera.far);
     return hit ? projection.z_of(hit->t) : 1.0;
@@ -57,7 +57,8 @@ double reference_receiver_z(const Scene& scene, const LightProjection& projectio
 double reference_blocker_z(const Scene& scene, const LightProjection& projection, double z_receiver)
 {
     constexpr int kSide = 64;
-    const PreparedScene prepared(scene.primitives);
+    const std::vector<Primitive> surfaces = scene_surfaces(scene);
+    const PreparedScene prepared(surfaces);
     std::vector<double> blockers;
     for (int j = 0; j < kSide; ++j)
         for (int i = 0; i < kSide; ++i) {
@@ -65,7 +66,7 @@ double reference_blocker_z(const Scene& scene, const LightProjection& projection
             const auto hit = prepared.closest_hit(ray, scene.light_camera.near, scene.light_camera.far);
             // Planes are the receivers of these scenes, not blockers (a tilted
             // ground is nearer than the reference receiver in half the map).
-            const bool solid = hit && !std::holds_alternative<Plane>(scene.primitives[std::size_t(hit->primitive)]);
+            const bool solid = hit && !std::holds_alternative<Plane>(surfaces[std::size_t(hit->primitive)]);
             if (solid && projection.z_of(hit->t) < 0.98 * z_receiver) blockers.push_back(projection.z_of(hit->t));
         }
     if (blockers.empty()) return 0.5 * z_receiver;

@@ -75,7 +75,7 @@ Receivers render_receivers(const Scene& scene, int width, int height)
             "size must be positive (got " + std::to_string(width) + "x" + std::to_string(height) + ")");
     validate_scene(scene, "render_receivers");
     const LightProjection projection(scene);
-    const PreparedScene prepared(scene.primitives);
+    const PreparedScene prepared(scene);
     const ViewRays rays(scene.view, width, height);
     Receivers out = Receivers::allocate(width, height);
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {

@@ -7,108 +7,75 @@
 // Range checks live in validate_scene, shared with scenes built in code.
 #include <cstdint>
 #include <fstream>
-#include <initializer_list>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "json_reader.h"
 #include "penumbra/error.h"
 #include "penumbra/input_file.h"
 #include "penumbra/reference/scene.h"
+#include "scene_json_deep.h"
 
 namespace penumbra::reference {
-namespace {
 
-using nlohmann::json;
-constexpr std::string_view kLoad = "load_scene";
+json to_json(Vec3 v) { return json::array({v.x, v.y, v.z}); }
 
-class Reader {
-public:
-    explicit Reader(std::string context) : context_(std::move(context)) {}
-
-    [[noreturn]] void fail(const std::string& field, std::string_view what) const
-    {
-        throw Error(ErrorCategory::InvalidArgument, kLoad, context_ + field + ": " + std::string(what));
-    }
-
-    void only_keys(const json& object, const std::string& path, std::initializer_list<std::string_view> keys) const
-    {
-        for (const auto& item : object.items()) {
-            bool known = false;
-            for (std::string_view key : keys) known = known || item.key() == key;
-            if (!known) fail(join(path, item.key()), "unknown field");
-        }
-    }
-
-    const json& member(const json& object, const std::string& path, const char* key) const
-    {
-        if (!object.is_object()) fail(path, "must be an object");
-        const auto it = object.find(key);
-        if (it == object.end()) fail(join(path, key), "missing");
-        return *it;
-    }
-
-    double number(const json& object, const std::string& path, const char* key) const
-    {
-        const json& value = member(object, path, key);
-        if (!value.is_number()) fail(join(path, key), "must be a number");
-        return value.get<double>();
-    }
-
-    double number_or(const json& object, const std::string& path, const char* key, double fallback) const
-    {
-        return object.contains(key) ? number(object, path, key) : fallback;
-    }
-
-    Vec3 vec3(const json& object, const std::string& path, const char* key) const
-    {
-        const json& value = member(object, path, key);
-        if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
-            !value[2].is_number())
-            fail(join(path, key), "must be an array of 3 numbers");
-        return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
-    }
-
-    Vec3 vec3_or(const json& object, const std::string& path, const char* key, Vec3 fallback) const
-    {
-        return object.contains(key) ? vec3(object, path, key) : fallback;
-    }
-
-    std::string string(const json& object, const std::string& path, const char* key) const
-    {
-        const json& value = member(object, path, key);
-        if (!value.is_string()) fail(join(path, key), "must be a string");
-        return value.get<std::string>();
-    }
-
-    static std::string join(const std::string& path, std::string_view key)
-    {
-        return path.empty() ? std::string(key) : path + "." + std::string(key);
-    }
-
-private:
-    std::string context_;
-};
-
-Primitive read_primitive(const Reader& r, const json& j, const std::string& at)
+Primitive read_shape(const Reader& r, const json& j, const std::string& at, std::initializer_list<std::string_view> extra)
 {
     const std::string type = r.string(j, at, "type");
     if (type == "plane") {
-        r.only_keys(j, at, {"type", "point", "normal"});
+        r.only_keys(j, at, {"type", "point", "normal"}, extra);
         return Plane{r.vec3(j, at, "point"), r.vec3(j, at, "normal")};
     }
     if (type == "sphere") {
-        r.only_keys(j, at, {"type", "center", "radius"});
+        r.only_keys(j, at, {"type", "center", "radius"}, extra);
         return Sphere{r.vec3(j, at, "center"), r.number(j, at, "radius")};
     }
     if (type == "box") {
-        r.only_keys(j, at, {"type", "center", "size", "rotation_degrees"});
+        r.only_keys(j, at, {"type", "center", "size", "rotation_degrees"}, extra);
         return Box{r.vec3(j, at, "center"), r.vec3(j, at, "size"), r.vec3_or(j, at, "rotation_degrees", {})};
     }
     if (type == "capsule") {
-        r.only_keys(j, at, {"type", "a", "b", "radius"});
+        r.only_keys(j, at, {"type", "a", "b", "radius"}, extra);
         return Capsule{r.vec3(j, at, "a"), r.vec3(j, at, "b"), r.number(j, at, "radius")};
     }
     r.fail(at + ".type", "must be one of plane, sphere, box, capsule (got \"" + type + "\")");
+}
+
+json shape_to_json(const Primitive& primitive)
+{
+    struct Writer {
+        json operator()(const Plane& p) const
+        {
+            return {{"type", "plane"}, {"point", to_json(p.point)}, {"normal", to_json(p.normal)}};
+        }
+        json operator()(const Sphere& s) const
+        {
+            return {{"type", "sphere"}, {"center", to_json(s.center)}, {"radius", s.radius}};
+        }
+        json operator()(const Box& b) const
+        {
+            return {{"type", "box"},
+                    {"center", to_json(b.center)},
+                    {"size", to_json(b.size)},
+                    {"rotation_degrees", to_json(b.rotation_degrees)}};
+        }
+        json operator()(const Capsule& c) const
+        {
+            return {{"type", "capsule"}, {"a", to_json(c.a)}, {"b", to_json(c.b)}, {"radius", c.radius}};
+        }
+    };
+    return std::visit(Writer{}, primitive);
+}
+
+namespace {
+
+// A shape and its optional opacity (1, opaque, when absent).
+Primitive read_primitive(const Reader& r, const json& j, const std::string& at)
+{
+    Primitive primitive = read_shape(r, j, at, {"opacity"});
+    const double opacity = r.number_or(j, at, "opacity", 1);
+    std::visit([&](auto& shape) { shape.opacity = opacity; }, primitive);
+    return primitive;
 }
 
 std::vector<Primitive> read_primitives(const Reader& r, const json& root)
@@ -141,8 +108,12 @@ AreaLight read_light(const Reader& r, const json& root)
         r.only_keys(j, "light", {"shape", "center", "normal", "up", "diameter"});
         light.shape = LightShape::Disk;
         light.width = light.height = r.number(j, "light", "diameter");
+    } else if (shape == "point") {
+        r.only_keys(j, "light", {"shape", "center", "normal", "up"});
+        light.shape = LightShape::Point;
+        light.width = light.height = 0;
     } else {
-        r.fail("light.shape", "must be \"rectangle\" or \"disk\" (got \"" + shape + "\")");
+        r.fail("light.shape", "must be \"rectangle\", \"disk\" or \"point\" (got \"" + shape + "\")");
     }
     return light;
 }
@@ -194,50 +165,36 @@ int read_map_size(const Reader& r, const json& root)
 Scene read_scene(const Reader& r, const json& root)
 {
     if (!root.is_object()) r.fail("(document)", "must be a JSON object");
-    r.only_keys(root, "", {"name", "description", "map_size", "primitives", "light", "light_camera", "view"});
+    r.only_keys(root, "",
+                {"name", "description", "map_size", "primitives", "media", "hair", "light", "light_camera", "view"});
     Scene scene;
     if (root.contains("name")) scene.name = r.string(root, "", "name");
     if (root.contains("description")) scene.description = r.string(root, "", "description");
     scene.map_size = read_map_size(r, root);
     scene.primitives = read_primitives(r, root);
+    scene.media = read_media(r, root);
+    scene.hair = read_hair(r, root);
     scene.light = read_light(r, root);
     scene.light_camera = read_light_camera(r, root);
     scene.view = read_view(r, root);
     return scene;
 }
 
-json to_json(Vec3 v) { return json::array({v.x, v.y, v.z}); }
-
+// The opacity only where it is not the default, so opaque scenes read as
+// they always did.
 json primitive_to_json(const Primitive& primitive)
 {
-    struct Writer {
-        json operator()(const Plane& p) const
-        {
-            return {{"type", "plane"}, {"point", to_json(p.point)}, {"normal", to_json(p.normal)}};
-        }
-        json operator()(const Sphere& s) const
-        {
-            return {{"type", "sphere"}, {"center", to_json(s.center)}, {"radius", s.radius}};
-        }
-        json operator()(const Box& b) const
-        {
-            return {{"type", "box"},
-                    {"center", to_json(b.center)},
-                    {"size", to_json(b.size)},
-                    {"rotation_degrees", to_json(b.rotation_degrees)}};
-        }
-        json operator()(const Capsule& c) const
-        {
-            return {{"type", "capsule"}, {"a", to_json(c.a)}, {"b", to_json(c.b)}, {"radius", c.radius}};
-        }
-    };
-    return std::visit(Writer{}, primitive);
+    json j = shape_to_json(primitive);
+    if (opacity_of(primitive) != 1) j["opacity"] = opacity_of(primitive);
+    return j;
 }
 
 json light_to_json(const AreaLight& light)
 {
     json j = {{"center", to_json(light.center)}, {"normal", to_json(light.normal)}, {"up", to_json(light.up)}};
-    if (light.shape == LightShape::Disk) {
+    if (light.shape == LightShape::Point) {
+        j["shape"] = "point";
+    } else if (light.shape == LightShape::Disk) {
         j["shape"] = "disk";
         j["diameter"] = light.width;
     } else {
@@ -293,7 +250,7 @@ std::string scene_to_json(const Scene& scene)
 {
     json primitives = json::array();
     for (const Primitive& p : scene.primitives) primitives.push_back(primitive_to_json(p));
-    const json root = {
+    json root = {
         {"name", scene.name},
         {"description", scene.description},
         {"map_size", scene.map_size},
@@ -306,6 +263,9 @@ std::string scene_to_json(const Scene& scene)
           {"fov_degrees", scene.view.fov_degrees}}},
         {"primitives", primitives},
     };
+    // Written only when present, so the scenes without them read as they did.
+    if (!scene.media.empty()) root["media"] = media_to_json(scene.media);
+    if (!scene.hair.empty()) root["hair"] = hair_to_json(scene.hair);
     return root.dump(2) + "\n";
 }
 

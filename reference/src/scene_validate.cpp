@@ -41,6 +41,16 @@ public:
         finite(v, field);
         require(length(v) > 1e-12, field, "must be a non-zero vector");
     }
+    void fraction(double value, const std::string& field) const
+    {
+        finite(value, field);
+        require(value >= 0 && value <= 1, field, "must be in [0, 1] (got " + std::to_string(value) + ")");
+    }
+    void non_negative(double value, const std::string& field) const
+    {
+        finite(value, field);
+        require(value >= 0, field, "must be >= 0 (got " + std::to_string(value) + ")");
+    }
 
 private:
     std::string_view operation_, context_;
@@ -50,12 +60,14 @@ void check(const FieldChecker& c, const Plane& p, const std::string& at)
 {
     c.finite(p.point, at + ".point");
     c.direction(p.normal, at + ".normal");
+    c.fraction(p.opacity, at + ".opacity");
 }
 
 void check(const FieldChecker& c, const Sphere& s, const std::string& at)
 {
     c.finite(s.center, at + ".center");
     c.positive(s.radius, at + ".radius");
+    c.fraction(s.opacity, at + ".opacity");
 }
 
 void check(const FieldChecker& c, const Box& b, const std::string& at)
@@ -65,6 +77,7 @@ void check(const FieldChecker& c, const Box& b, const std::string& at)
     c.positive(b.size.x, at + ".size[0]");
     c.positive(b.size.y, at + ".size[1]");
     c.positive(b.size.z, at + ".size[2]");
+    c.fraction(b.opacity, at + ".opacity");
 }
 
 void check(const FieldChecker& c, const Capsule& k, const std::string& at)
@@ -72,6 +85,50 @@ void check(const FieldChecker& c, const Capsule& k, const std::string& at)
     c.finite(k.a, at + ".a");
     c.finite(k.b, at + ".b");
     c.positive(k.radius, at + ".radius");
+    c.fraction(k.opacity, at + ".opacity");
+}
+
+// The lowest k in the region, where the gradient points most against:
+// extinction - |g| r for a sphere, extinction - sum_i |g . axis_i| h_i for a box.
+double lowest_extinction(const Medium& m)
+{
+    if (const auto* sphere = std::get_if<Sphere>(&m.region)) return m.extinction - length(m.gradient) * sphere->radius;
+    const Box& box = std::get<Box>(m.region);
+    const Rotation r = rotation_from_euler_degrees(box.rotation_degrees);
+    const Vec3 h = box.size * 0.5;
+    return m.extinction - std::fabs(dot(m.gradient, r.x)) * h.x - std::fabs(dot(m.gradient, r.y)) * h.y -
+           std::fabs(dot(m.gradient, r.z)) * h.z;
+}
+
+void check_medium(const FieldChecker& c, const Medium& m, const std::string& at)
+{
+    std::visit([&](const auto& region) { check(c, region, at); }, m.region);
+    const double region_opacity = std::visit([](const auto& region) { return region.opacity; }, m.region);
+    c.require(region_opacity == 1, at + ".opacity", "a medium has no surface opacity (leave it 1)");
+    c.non_negative(m.extinction, at + ".extinction");
+    c.finite(m.gradient, at + ".gradient");
+    const double lowest = lowest_extinction(m);
+    c.require(lowest >= 0, at + ".gradient",
+              "makes the extinction negative inside the region (its lowest value is " + std::to_string(lowest) +
+                  "); raise extinction or shrink the gradient");
+}
+
+void check_hair(const FieldChecker& c, const Hair& h, const std::string& at)
+{
+    c.finite(h.center, at + ".center");
+    c.positive(h.scalp_radius, at + ".scalp_radius");
+    c.direction(h.axis, at + ".axis");
+    c.finite(h.cap_degrees, at + ".cap_degrees");
+    c.require(h.cap_degrees > 0 && h.cap_degrees <= 180, at + ".cap_degrees", "must be in (0, 180]");
+    c.require(h.strands >= 1, at + ".strands", "must be >= 1");
+    c.require(h.segments >= 1 && h.segments <= 64, at + ".segments", "must be in [1, 64]");
+    c.require(static_cast<long long>(h.strands) * h.segments <= kMaxHairCapsules, at + ".strands",
+              "strands x segments must be <= " + std::to_string(kMaxHairCapsules));
+    c.positive(h.length, at + ".length");
+    c.positive(h.radius, at + ".radius");
+    c.non_negative(h.droop, at + ".droop");
+    c.non_negative(h.curl, at + ".curl");
+    c.fraction(h.opacity, at + ".opacity");
 }
 
 void check_light(const FieldChecker& c, const AreaLight& light)
@@ -80,7 +137,9 @@ void check_light(const FieldChecker& c, const AreaLight& light)
     c.direction(light.normal, "light.normal");
     c.finite(light.up, "light.up");
     // Named as in the JSON form: a rectangle's "size": [width, height], a disk's "diameter".
-    if (light.shape == LightShape::Disk) {
+    if (light.shape == LightShape::Point) {
+        c.require(light.width == 0 && light.height == 0, "light.size", "must be 0 x 0 for a point light");
+    } else if (light.shape == LightShape::Disk) {
         c.positive(light.width, "light.diameter");
         c.require(light.height == light.width, "light.height", "must equal the width (the diameter) for a disk");
     } else {
@@ -123,6 +182,10 @@ void validate_scene(const Scene& scene, std::string_view operation, std::string_
         const std::string at = "primitives[" + std::to_string(i) + "]";
         std::visit([&](const auto& primitive) { check(checker, primitive, at); }, scene.primitives[i]);
     }
+    for (std::size_t i = 0; i < scene.media.size(); ++i)
+        check_medium(checker, scene.media[i], "media[" + std::to_string(i) + "]");
+    for (std::size_t i = 0; i < scene.hair.size(); ++i)
+        check_hair(checker, scene.hair[i], "hair[" + std::to_string(i) + "]");
     check_light(checker, scene.light);
     check_light_camera(checker, scene.light_camera);
     check_view(checker, scene.view);

@@ -56,7 +56,7 @@ Image render_shadow_map(const Scene& scene, int width, int height, ShadowDepth d
             "render_shadow_map", "depth", "must be ShadowDepth::First, Midpoint or Second");
     validate_scene(scene, "render_shadow_map");
     const LightProjection projection(scene);
-    const PreparedScene prepared(scene.primitives);
+    const PreparedScene prepared(scene);
     const double near = scene.light_camera.near, far = scene.light_camera.far;
     Image map(width, height, 1);
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {

@@ -17,7 +17,7 @@ int main(int argc, char** argv)
         return 2;
     }
     int written = 0;
-    for (const std::string& name : penumbra::reference::builtin_scene_names()) {
+    for (const std::string& name : penumbra::reference::builtin_scene_names(penumbra::reference::SceneSet::All)) {
         std::ofstream out(std::string(argv[1]) + "/" + name + ".json", std::ios::binary);
         out << penumbra::reference::scene_to_json(penumbra::reference::builtin_scene(name));
         if (!out.flush()) {

@@ -116,6 +116,12 @@ TEST_F(MomentsErrors, LookupsRejectBadReceiversTablesAndBiases)
     expect_error([&] { msm(ctx, table, rx, MsmOptions{-1}); }, kArg, "msm", "radius must be >= 0");
     expect_error([&] { evsm(ctx, warped, rx, EvsmOptions{128}); }, kArg, "evsm", "radius 128 exceeds 127");
     expect_error([&] { msm_soft(ctx, table, rx, MsmSoftOptions{0.0f}); }, kArg, "msm_soft", "light-size must be > 0");
+    for (float bad : {-0.1f, 16.5f, NAN}) {
+        expect_error([&] { msm_soft(ctx, table, rx, MsmSoftOptions{0.02f, {}, {}, bad}); }, kArg, "msm_soft",
+                     "plane-bias must be in [0, 16]");
+        expect_error([&] { msm_soft(ctx, table, rx, MsmSoftOptions{0.02f, {}, {}, 1.0f, bad}); }, kArg, "msm_soft",
+                     "plane-bias-max must be in [0, 1]");
+    }
     Image big_depth(600, 4, 1);
     const MsmTable big = build_msm_table(ctx, big_depth);
     expect_error([&] { msm_soft(ctx, big, testing::receivers_at_depth(600, 4, 0.5f), MsmSoftOptions{0.5f}); }, kArg,

@@ -17,21 +17,15 @@
 #include <numeric>
 #include <optional>
 
+#include "support/cl_sources.h"
+
 namespace penumbra::cl_backend {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string add1_source = "kernel void add1(global float* a){ a[get_global_id(0)] += 1.0f; }\n";
-
-// A source no cache (ours or PoCL's) has seen, so its first build is a cold one.
-std::string never_built_source()
-{
-    static int counter = 0;
-    const auto now = std::chrono::system_clock::now().time_since_epoch().count();
-    return "// unique " + std::to_string(::getpid()) + "-" + std::to_string(now) + "-" +
-           std::to_string(++counter) + "\n" + add1_source;
-}
+using testing::add1_source;
+using testing::never_built_source;
 
 // A scratch path that a threadsafe death test's child (which re-runs the test
 // body in a new process) sees with the same name as the parent: passed by
@@ -115,7 +109,7 @@ TEST(DriverCacheLock, ExcludesOthersWhileHeldAndReleasesAfter)
 
 TEST(ProgramKey, ChangesWithEveryField)
 {
-    const ProgramIdentity base{"src", "-O", "dev", "dver", "drv", "plat", "pver"};
+    const ProgramIdentity base{"src", "-O", "dev", "dver", "drv", "plat", "pver", "512x8,64"};
     const std::uint64_t key = program_key(base);
     EXPECT_EQ(key, program_key(base));
     auto changed = [&](auto edit) {
@@ -130,6 +124,7 @@ TEST(ProgramKey, ChangesWithEveryField)
     EXPECT_NE(key, changed([](ProgramIdentity& id) { id.driver_version = "drv2"; }));
     EXPECT_NE(key, changed([](ProgramIdentity& id) { id.platform_name = "plat2"; }));
     EXPECT_NE(key, changed([](ProgramIdentity& id) { id.platform_version = "pver2"; }));
+    EXPECT_NE(key, changed([](ProgramIdentity& id) { id.work_groups = "64x4,64"; }));
     // Field boundaries count: moving a character from one field to the next is another key.
     EXPECT_NE(key, changed([](ProgramIdentity& id) { id.source = "sr", id.options = "c-O"; }));
 }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "penumbra/moments.h"
+#include "support/fidelity_cases.h"
 #include "support/backends.h"
 #include "support/maps.h"
 #include "support/visibility.h"
@@ -87,6 +88,62 @@ PN_BACKEND_TEST(MsmSoftTest, NoHaloFromBlockersOfTwoDepths)
         const Image out = msm_soft(ctx, table_for(ctx, depth, q), rx, MsmSoftOptions{40.0f / 64.0f, {}, {}});
         for (int y = 0; y < 16; ++y) EXPECT_EQ(out.at(0, 32, y), 1.0f) << backend << " " << to_string(q) << " row " << y;
     }
+}
+
+// The plane bias (kernels/msm_soft.h) against the float64 reference of
+// tests/support/fidelity_reference.cpp on every backend: a ground tilted in
+// both axes (dz/du = 0.1, dz/dv = 0.05) under a square blocker, receivers
+// on the ground at every texel centre, so that the receivers' plane is
+// known in closed form and the library's finite differences must find it.
+// Bias shares 0.5 and 1, and 1 capped at 2e-3 (the cap binding); odd sizes.
+PN_BACKEND_TEST(MsmSoftTest, PlaneBiasMatchesTheFloat64Reference)
+{
+    namespace fid = testing::fidelity;
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    const int w = 61, h = 47;
+    const auto ground = [&](double u, double v) { return float(0.4 + 0.1 * u + 0.05 * v); };
+    Image depth(w, h, 1);
+    Image rx(w, h, 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const double u = (x + 0.5) / w, v = (y + 0.5) / h;
+            const bool blocker = x >= 20 && x < 30 && y >= 15 && y < 25;
+            depth.at(0, x, y) = blocker ? 0.15f : ground(u, v);
+            rx.at(0, x, y) = float(u);
+            rx.at(1, x, y) = float(v);
+            rx.at(2, x, y) = ground(u, v);
+        }
+    const MsmTable table = build_msm_table(ctx, depth);
+    const Image unbiased = msm_soft(ctx, table, rx, MsmSoftOptions{0.3f, {}, {}});
+    struct Bias {
+        float share, cap;
+    };
+    for (float light : {0.1f, 0.3f})
+        for (Bias b : {Bias{0.5f, 0.02f}, Bias{1.0f, 0.02f}, Bias{1.0f, 2e-3f}}) {
+            MsmSoftOptions o{light, {}, {}};
+            o.plane_bias = b.share;
+            o.plane_bias_max = b.cap;
+            const Image out = msm_soft(ctx, table, rx, o);
+            fid::Params p;
+            p.light_size = light;
+            p.max_radius = kExactMaxRadius - 1;
+            p.moment_bias = default_moment_bias(table.quantization);
+            p.msm_depth_bias = default_depth_bias(table.quantization);
+            p.plane_bias = b.share;
+            p.plane_bias_max = b.cap;
+            p.plane_dzdu = 0.1L;
+            p.plane_dzdv = 0.05L;
+            if (light == 0.3f && b.cap == 0.02f) {  // a case where the bias matters
+                float moved = 0.0f;
+                for (int i = 0; i < w * h; ++i)
+                    moved = std::max(moved, out.at(0, i % w, i / w) - unbiased.at(0, i % w, i / w));
+                EXPECT_GT(moved, 0.05f) << backend << " plane bias " << b.share;
+            }
+            const fid::Tally t = fid::judge_all(fid::Method::MsmSoft, depth, rx, out, p);
+            EXPECT_EQ(t.failed, 0) << backend << " L " << light << " plane bias " << b.share << " cap " << b.cap
+                                   << ": " << t.failed << " of " << t.receivers << " fail (worst " << t.worst
+                                   << ")\n" << t.first_failures;
+        }
 }
 
 // No blocker in front: exactly 1. On flat ground 0.01 below the receivers

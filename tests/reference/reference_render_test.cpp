@@ -35,7 +35,7 @@ void expect_in_unit_range(const Image& image, int channel, const std::string& wh
 
 TEST(ReferenceRender, EveryBuiltinSceneRendersSmallInRange)
 {
-    for (const std::string& name : builtin_scene_names()) {
+    for (const std::string& name : builtin_scene_names(SceneSet::All)) {
         const Scene scene = builtin_scene(name);
         const Image map = render_shadow_map(scene, 64, 48);
         EXPECT_NO_THROW(require_finite(map, "test", name + " shadow map"));

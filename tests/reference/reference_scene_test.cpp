@@ -2,6 +2,7 @@
 // name the offending field.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -32,11 +33,14 @@ const std::string kThreePrimitives = R"([
   {"type": "box", "center": [0, 1, 0], "size": [1, 0.1, 1]},
   {"type": "sphere", "center": [1, 1, 0], "radius": 0.5}])";
 
-TEST(ReferenceScene, BuiltinNamesAreTheFiveFailureModes)
+TEST(ReferenceScene, BuiltinNamesAreTheFiveFailureModesAndTheThreeDeepScenes)
 {
     const std::vector<std::string> expected = {"contact", "overlap", "fence", "grazing", "large"};
     EXPECT_EQ(builtin_scene_names(), expected);
-    for (const std::string& name : builtin_scene_names()) {
+    EXPECT_EQ(builtin_scene_names(SceneSet::Opaque), expected);
+    EXPECT_EQ(builtin_scene_names(SceneSet::Deep), (std::vector<std::string>{"hair", "fog", "layers"}));
+    EXPECT_EQ(builtin_scene_names(SceneSet::All).size(), 8u);
+    for (const std::string& name : builtin_scene_names(SceneSet::All)) {
         const Scene scene = builtin_scene(name);
         EXPECT_EQ(scene.name, name);
         EXPECT_FALSE(scene.description.empty());
@@ -48,17 +52,20 @@ TEST(ReferenceScene, BuiltinNamesAreTheFiveFailureModes)
 TEST(ReferenceScene, UnknownBuiltinNamesTheValidOnes)
 {
     expect_error([] { builtin_scene("contcat"); }, ErrorCategory::InvalidArgument,
-                 "contact, overlap, fence, grazing, large");
+                 "contact, overlap, fence, grazing, large, hair, fog, layers");
 }
 
 TEST(ReferenceScene, JsonRoundTripOfEveryBuiltinIsExact)
 {
-    for (const std::string& name : builtin_scene_names()) {
+    for (const std::string& name : builtin_scene_names(SceneSet::All)) {
         const Scene scene = builtin_scene(name);
         const std::string text = scene_to_json(scene);
         const Scene back = scene_from_json(text);
         EXPECT_EQ(scene_to_json(back), text) << name;
         ASSERT_EQ(back.primitives.size(), scene.primitives.size());
+        EXPECT_EQ(back.media.size(), scene.media.size());
+        EXPECT_EQ(back.hair.size(), scene.hair.size());
+        EXPECT_EQ(back.light.shape, scene.light.shape);
         EXPECT_EQ(back.light.center, scene.light.center);
         EXPECT_EQ(back.view.position, scene.view.position);
         EXPECT_EQ(back.light_camera.fov_degrees, scene.light_camera.fov_degrees);
@@ -142,6 +149,83 @@ TEST(ReferenceScene, BadLightAndCameraFieldsAreNamed)
     expect_error(with(R"("target": [0, 0, 0])", R"("target": [0, 3, 4])"), invalid,
                  "view.target: must differ from view.position");
     expect_error(with(R"("name": "t",)", R"("name": "t", "map_size": 0,)"), invalid, "map_size: must be in");
+}
+
+TEST(ReferenceScene, OpaqueScenesWriteNoDeepFields)
+{
+    // Opacity 1, no media and no hair are the defaults and are not written,
+    // so the opaque scenes' JSON is what it was before they existed.
+    const std::string text = scene_to_json(builtin_scene("fence"));
+    for (const char* field : {"opacity", "media", "hair"}) EXPECT_EQ(text.find(field), std::string::npos) << field;
+    const Scene layers = scene_from_json(scene_to_json(builtin_scene("layers")));
+    EXPECT_EQ(opacity_of(layers.primitives[3]), 0.7);
+    EXPECT_EQ(opacity_of(layers.primitives[0]), 1.0);
+}
+
+TEST(ReferenceScene, BadDeepFieldsAreNamed)
+{
+    const auto invalid = ErrorCategory::InvalidArgument;
+    const auto load = [](const std::string& primitives, const std::string& extra = "") {
+        std::string text = scene_text(primitives);
+        text.insert(text.rfind('}'), extra);
+        return [text] { scene_from_json(text, "deep.json"); };
+    };
+    const std::string plane = R"([{"type": "plane", "point": [0,0,0], "normal": [0,1,0]}])";
+    expect_error(load(R"([{"type": "sphere", "center": [0,1,0], "radius": 1, "opacity": 1.5}])"), invalid,
+                 "deep.json: primitives[0].opacity: must be in [0, 1]");
+    expect_error(load(R"([{"type": "box", "center": [0,1,0], "size": [1,1,1], "opacity": -0.1}])"), invalid,
+                 "primitives[0].opacity: must be in [0, 1]");
+    expect_error(load(R"([{"type": "sphere", "center": [0,1,0], "radius": 1, "opacity": "half"}])"), invalid,
+                 "primitives[0].opacity: must be a number");
+    expect_error(load(plane, R"(, "media": [{"type": "sphere", "center": [0,1,0], "radius": 1, "extinction": -2}])"),
+                 invalid, "media[0].extinction: must be >= 0");
+    expect_error(load(plane, R"(, "media": [{"type": "box", "center": [0,1,0], "size": [2,2,2], "extinction": 0.5,
+                                             "gradient": [0, 1, 0]}])"),
+                 invalid, "media[0].gradient: makes the extinction negative inside the region");
+    expect_error(load(plane, R"(, "media": [{"type": "capsule", "a": [0,0,0], "b": [0,1,0], "radius": 1,
+                                             "extinction": 1}])"),
+                 invalid, "media[0].type: must be sphere or box for a medium");
+    expect_error(load(plane, R"(, "media": [{"type": "sphere", "center": [0,1,0], "radius": 1}])"), invalid,
+                 "media[0].extinction: missing");
+    expect_error(load(plane, R"(, "media": [{"type": "sphere", "center": [0,1,0], "radius": 1, "extinction": 1,
+                                             "opacity": 0.5}])"),
+                 invalid, "media[0].opacity: unknown field");
+    expect_error(load(plane, R"(, "media": {})"), invalid, "media: must be an array");
+    const std::string hair = R"(, "hair": [{"center": [0,1,0], "scalp_radius": 0.5, "length": 0.3, "radius": 0.001,
+                                            "seed": 3, )";
+    expect_error(load(plane, hair + R"("strands": 0}])"), invalid, "hair[0].strands: must be in [1, 1048576]");
+    expect_error(load(plane, hair + R"("strands": 10.5}])"), invalid, "hair[0].strands: must be an integer");
+    expect_error(load(plane, hair + R"("strands": 10, "segments": 65}])"), invalid, "hair[0].segments: must be in [1, 64]");
+    expect_error(load(plane, hair + R"("strands": 10, "opacity": 2}])"), invalid, "hair[0].opacity: must be in [0, 1]");
+    expect_error(load(plane, hair + R"("strands": 10, "cap_degrees": 0}])"), invalid,
+                 "hair[0].cap_degrees: must be in (0, 180]");
+    expect_error(load(plane, hair + R"("strands": 100000, "segments": 64}])"), invalid,
+                 "hair[0].strands: strands x segments must be <= 1048576");
+    expect_error(load(plane, R"(, "hair": [{"center": [0,1,0], "scalp_radius": 0.5, "length": 0.3, "radius": 0.001,
+                                            "strands": 10, "seed": -1}])"),
+                 invalid, "hair[0].seed: must be an integer in [0, 2^64)");
+    std::string point = scene_text(plane);
+    point.replace(point.find(R"("shape": "rectangle")"), 20, R"("shape": "point")");
+    expect_error([point] { scene_from_json(point); }, invalid, "light.size: unknown field");
+    point.replace(point.find(R"(, "size": [1, 1])"), 16, "");
+    EXPECT_EQ(scene_from_json(point).light.shape, LightShape::Point);
+}
+
+TEST(ReferenceScene, ScenesBuiltInCodeGetTheSameDeepChecks)
+{
+    const auto invalid = ErrorCategory::InvalidArgument;
+    Scene scene = builtin_scene("layers");
+    std::get<Box>(scene.primitives[1]).opacity = std::nan("");
+    expect_error([&] { validate_scene(scene, "test"); }, invalid, "primitives[1].opacity: must be a finite number");
+    scene = builtin_scene("fog");
+    std::get<Box>(scene.media[0].region).opacity = 0.5;
+    expect_error([&] { validate_scene(scene, "test"); }, invalid, "media[0].opacity: a medium has no surface opacity");
+    scene = builtin_scene("hair");
+    scene.light.width = 0.1;
+    expect_error([&] { validate_scene(scene, "test"); }, invalid, "light.size: must be 0 x 0 for a point light");
+    scene = builtin_scene("hair");
+    scene.hair[0].radius = 0;
+    expect_error([&] { validate_scene(scene, "test"); }, invalid, "hair[0].radius: must be > 0");
 }
 
 TEST(ReferenceScene, UnreadableOrMalformedFilesAreIoErrors)

@@ -562,10 +562,21 @@ Search soft_search(Method m, const Moments& search, const Receiver64& r, const P
     return {k.weight < real(p.moment_bias) + kMsmNoBlocker || r.geometry_z <= 0, k.depth};
 }
 
-real soft_filter_answer(Method m, const Moments& filter, const Receiver64& r, const Params& p)
+// msm-soft's reconstruction depth over the filter window: z_f lowered by
+// plane_bias times the receiver plane's lowest point in the window (at a
+// corner), at most plane_bias_max.
+real plane_biased_depth(const Image& depth, const Span& window, const Receiver64& r, const Params& p)
 {
-    if (m == Method::Vssm) return linstep(p.bleed, 1, chebyshev_upper(filter, r.z, p.min_variance));
-    return 1 - msm_intensity(filter, r.z, p.moment_bias);
+    const real du0 = r.u - window.x0 / depth.width(), du1 = r.u - window.x1 / depth.width();
+    const real dv0 = r.v - window.y0 / depth.height(), dv1 = r.v - window.y1 / depth.height();
+    const real drop = std::max(p.plane_dzdu * du0, p.plane_dzdu * du1) + std::max(p.plane_dzdv * dv0, p.plane_dzdv * dv1);
+    return r.z - std::min(real(p.plane_bias) * std::max(drop, real(0)), real(p.plane_bias_max));
+}
+
+real soft_filter_answer(Method m, const Moments& filter, real z, const Params& p)
+{
+    if (m == Method::Vssm) return linstep(p.bleed, 1, chebyshev_upper(filter, z, p.min_variance));
+    return 1 - msm_intensity(filter, z, p.moment_bias);
 }
 
 // kernels/msm_soft.h: MSM-soft searches again for blockers over each filter
@@ -598,7 +609,7 @@ Answer soft_method(Method m, const Image& depth, Receiver rf, const Params& p, b
         if (!span) return real(1);
         Moments filter = span_moments(depth, *span, identity, p);
         if (perturb_filter) filter = perturbed(filter, raw_count(m), filter_signs, kPerturbation);
-        return soft_filter_answer(m, filter, r, p);
+        return soft_filter_answer(m, filter, plane_biased_depth(depth, *span, r, p), p);
     };
     Answer a{answer_from(search, 0, false)};
     if (!with_movement) return a;
@@ -612,8 +623,9 @@ Answer soft_method(Method m, const Image& depth, Receiver rf, const Params& p, b
             continue;
         }
         const Moments filter = span_moments(depth, *span, identity, p);
+        const real z = plane_biased_depth(depth, *span, r, p);
         for (unsigned f = 0; f < (1u << count); ++f) {
-            const real v = soft_filter_answer(m, perturbed(filter, count, f, kPerturbation), r, p);
+            const real v = soft_filter_answer(m, perturbed(filter, count, f, kPerturbation), z, p);
             a.movement = std::max(a.movement, std::fabs(v - a.visibility));
         }
     }

@@ -84,6 +84,11 @@ struct Params {
     float evsm_depth_bias = 0.0f;   // evsm
     float positive = 5.545177f;     // evsm: c+
     float negative = 5.545177f;     // evsm4: c-
+    // msm-soft's plane bias (kernels/msm_soft.h) and the receivers' plane,
+    // dz/du and dz/dv, the same at every receiver: the tests that set it
+    // shade a planar receiver grid, whose plane is known in closed form.
+    float plane_bias = 0.0f, plane_bias_max = 0.02f;
+    real plane_dzdu = 0, plane_dzdv = 0;
     // msm, msm-soft: windows from these moments instead of the depths' powers.
     const StoredMoments* stored = nullptr;
     // evsm: the map's warps, when precomputed (warp_map); else warped per texel.

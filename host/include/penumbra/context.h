@@ -14,6 +14,7 @@
 // once per context (PoCL compiles at run time: seconds, cached on disk).
 #pragma once
 
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,5 +59,13 @@ private:
     std::string reason_;
     std::vector<std::string> warnings_;
 };
+
+// Makes a Context on another thread and returns at once, so that the caller
+// can read its inputs meanwhile: an OpenCL driver takes tens of milliseconds
+// to start (PoCL loads LLVM and probes the CPU: about half of a warm
+// `penumbra shade`, docs/opencl_startup.md). The context's errors come from
+// get(). What the driver needs of the process environment is set before this
+// returns, so that no other thread reads the environment while it changes.
+std::future<Context> start_context(ContextOptions options = {});
 
 }  // namespace penumbra

@@ -42,6 +42,7 @@ struct MethodSettings {
     float bleed = 0.0f;
     float light_size = VssmOptions{}.light_size;
     std::optional<float> moment_bias{}, depth_bias{};  // unset: the method's default
+    float plane_bias = MsmSoftOptions{}.plane_bias, plane_bias_max = MsmSoftOptions{}.plane_bias_max;
     Quantization quantization = Quantization::None;
     std::optional<float> positive_exponent{}, negative_exponent{};
     // pcss and burley (penumbra/soft_pcf.h).

@@ -90,6 +90,14 @@ struct MsmSoftOptions {
     float light_size = 0.02f;           // as VssmOptions::light_size (> 0)
     std::optional<float> moment_bias{};
     std::optional<float> depth_bias{};
+    // The receiver's own plane inside wide windows (kernels/msm_soft.h): each
+    // window compares against z - depth_bias - min(plane_bias x the plane's
+    // largest drop inside it, plane_bias_max). 0 = off, the window contract
+    // of the other lookups; 1 = a planar receiver never shadows itself. The
+    // plane: dz/du, dz/dv by finite differences on the receivers' grid, as
+    // the percentage-closer family's (pcf_receivers, penumbra/pcf.h).
+    float plane_bias = 0.0f;            // in [0, 16]
+    float plane_bias_max = 0.02f;       // in [0, 1], depth units
 };
 
 Image msm(Context& context, const MsmTable& table, const Image& receivers, const MsmOptions& options = {});

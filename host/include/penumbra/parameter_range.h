@@ -36,6 +36,10 @@ inline constexpr ParameterRange kBleedRange{"bleed", "bleed", 0, 1, false, true}
 inline constexpr ParameterRange kLightSizeRange{"light-size", "light-size", 0, kNoUpperBound, true, true};
 inline constexpr ParameterRange kMomentBiasRange{"moment-bias", "moment-bias", 0, 1, false, true};
 inline constexpr ParameterRange kDepthBiasRange{"depth-bias", "depth-bias", 0, 1, false, true};
+// msm_soft's receiver-plane bias: the share of the plane's drop over a window
+// (1: the receiver's whole plane in the window counts as lit), and its cap.
+inline constexpr ParameterRange kPlaneBiasRange{"plane-bias", "plane-bias", 0, 16, false, false};
+inline constexpr ParameterRange kPlaneBiasMaxRange{"plane-bias-max", "plane-bias-max", 0, 1, false, false};
 // EVSM's warp exponents on the exact 48-bit tables: the warped variance floor
 // must stay far above the storage's rounding (penumbra/moments.h,
 // kEvsmMaxExponentExact, is this bound); the 16-bit storage lowers it.

@@ -24,6 +24,8 @@ struct SystemInfo {
     std::string auto_backend, auto_description, auto_reason;
     std::vector<std::string> auto_warnings;
     std::string cache_directory;         // OpenCL program binaries (and PoCL's cache)
+    std::string seed_directory;          // OpenCL binaries made at build time, read when the cache misses
+    int seed_programs = 0;               // how many it holds
     // With `measure_opencl_build`: an OpenCL context was started and its
     // program built; the time in seconds (or the error that stopped it).
     double opencl_build_seconds = -1.0;

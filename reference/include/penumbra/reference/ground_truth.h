@@ -1,5 +1,9 @@
-// Ground truth: the fraction of the area light visible from each receiver,
-// by stratified ray casting against the analytic primitives.
+// Ground truth: the fraction of the light that reaches each receiver, the
+// mean transmittance of the segments from it to the light (tracer.h:
+// products of 1 - opacity over the layers crossed, times exp(-integral of k)
+// through the media), by stratified ray casting against the analytic scene.
+// With opaque surfaces and no media that is the fraction of the area light
+// visible; for a point light it is one segment's transmittance, exact.
 //
 // Sampling (docs/reference.md, "Ground truth"): the light's rectangle, or the
 // square that a disk is mapped from by Shirley and Chiu's concentric map
@@ -37,8 +41,9 @@ inline constexpr double kNormalOffset = 1e-6;
 // Throws Error(InvalidArgument) for strata outside [1, 4096].
 Image ground_truth(const Scene& scene, const Receivers& receivers, const GroundTruthOptions& options = {});
 
-// The visible fraction for one receiver point; `stream` seeds its samples.
-// 0 for a point behind the light's plane (the light is one-sided).
+// The light arriving at one receiver point; `stream` seeds its samples (an
+// area light's; a point light ignores strata and stream). 0 for a point
+// behind the light's plane (the light is one-sided).
 double light_visibility(const PreparedScene& prepared, const AreaLight& light, Vec3 position, Vec3 normal,
                         int strata, std::uint64_t stream);
 

@@ -22,6 +22,8 @@ namespace penumbra::reference {
 //             needs far less bias; a thin occluder still leaks.
 //   Second    z2: the receiver's own back face decides (Wang and Molnar 1994's
 //             second-depth idea; it needs closed, watertight solids).
+// The surfaces are those of opacity > 0, whatever their opacity (a
+// semi-transparent layer is a depth like any other); media are not surfaces.
 // Where the ray has no second crossing before the far plane (the ground is a
 // half-space: rays enter it and never leave), z2 is the far plane, 1; so
 // Second stores 1 and Midpoint (z1 + 1) / 2 there: lit ground with nothing
@@ -44,7 +46,8 @@ Image render_shadow_map(const Scene& scene, int width, int height, ShadowDepth d
 //  world_position  3 channels: x, y, z of the visible point
 //  normal          3 channels: the outward unit normal there
 //  view_depth      1 channel: distance along the view camera's axis
-//  hit             1 channel: 1 where the pixel sees a surface, else 0
+//  hit             1 channel: 1 where the pixel sees a surface (of opacity > 0;
+//                  the view sees through media), else 0
 //  mask            1 channel: 1 where the pixel is a valid receiver: it sees a
 //                  surface whose (u, v, z) lies in [0, 1]^3, inside the light's
 //                  frustum; 0 elsewhere.

@@ -1,11 +1,19 @@
-// The reference scene model: analytic primitives, an area light, the light's
-// camera (which renders the shadow map) and the view camera (which sees the
-// receivers). docs/reference.md gives the conventions with figures.
+// The reference scene model: analytic primitives, an area or point light, the
+// light's camera (which renders the shadow map) and the view camera (which
+// sees the receivers); for deep shadows also surface opacity, participating
+// media and hair. docs/reference.md gives the conventions with figures.
 //
 // Every primitive is a solid: a plane is the half-space below it, a box, sphere
 // or capsule its inside. Rays and the signed distance treat them alike.
+//
+// Opacity: every primitive is one layer that transmits 1 - opacity of the
+// light crossing it, once per ray however many of its faces the ray crosses
+// (a slab, a strand, a sheet; every primitive is convex, so a line meets it in
+// one interval). 1, the default, is opaque: scenes without the field are what
+// they always were. A surface of opacity 0 is not there at all.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -20,11 +28,13 @@ namespace penumbra::reference {
 struct Plane {
     Vec3 point;
     Vec3 normal{0, 1, 0};
+    double opacity = 1;
 };
 
 struct Sphere {
     Vec3 center;
     double radius = 1;
+    double opacity = 1;
 };
 
 // An oriented box: full side lengths `size` along its local axes, turned by
@@ -34,21 +44,76 @@ struct Box {
     Vec3 center;
     Vec3 size{1, 1, 1};
     Vec3 rotation_degrees;
+    double opacity = 1;
 };
 
 // The points within `radius` of the segment [a, b].
 struct Capsule {
     Vec3 a, b{0, 1, 0};
     double radius = 0.5;
+    double opacity = 1;
 };
 
 using Primitive = std::variant<Plane, Sphere, Box, Capsule>;
 
-enum class LightShape { Rectangle, Disk };
+double opacity_of(const Primitive& primitive);
 
-// A one-sided area light centred on `center`, emitting towards `normal`. Its
-// frame is basis_looking_along(normal, up): the rectangle spans `width` along
-// s and `height` along t; a disk has diameter `width` (and height == width).
+// A region of participating medium (fog): a sphere or an oriented box whose
+// extinction coefficient (per unit length) is linear in position,
+//   k(p) = extinction + dot(gradient, p - centre of the region),
+// homogeneous when the gradient is zero. Linear because the integral of a
+// linear function along a chord is the chord's length times k at its midpoint,
+// so the transmittance exp(-integral of k ds) has a closed form. k must be >= 0
+// everywhere in the region (validate_scene checks its lowest point). Media add
+// where they overlap. A medium is not a surface: it is no shadow-map depth and
+// the view camera sees through it. The region's own opacity has no meaning
+// here and must stay 1.
+struct Medium {
+    std::variant<Sphere, Box> region;
+    double extinction = 1;  // k at the region's centre
+    Vec3 gradient;          // dk/dp, per unit length squared
+};
+
+// Hair: `strands` strands rooted uniformly (by area) on the cap of the sphere
+// (center, scalp_radius) within cap_degrees of `axis`. A strand is a chain of
+// `segments` capsules of radius `radius`, `length` long in all; it leaves the
+// scalp along its normal, and each segment's direction is the previous one
+// plus droop / segments of a unit step down (-y) plus a random vector with
+// components in [-curl, curl], normalised. hair_strands() generates the
+// capsules from `seed` through SplitMix64 (no std:: distributions, whose
+// output differs between standard libraries): the same seed, the same
+// strands. Each capsule is a layer of the hair's opacity (where a ray crosses
+// a joint it crosses two capsules: exact for opaque hair, a double step for a
+// translucent one). Meant to be thinner than a shadow-map texel.
+struct Hair {
+    Vec3 center{0, 1, 0};
+    double scalp_radius = 0.5;
+    Vec3 axis{0, 1, 0};
+    double cap_degrees = 90;
+    int strands = 1000;
+    int segments = 4;
+    double length = 0.3;
+    double radius = 0.0004;
+    double droop = 0;
+    double curl = 0;
+    double opacity = 1;
+    std::uint64_t seed = 1;
+};
+
+// At most this many capsules per Hair (strands x segments): 1 Mi, about
+// 100 MB of hierarchy.
+inline constexpr long long kMaxHairCapsules = 1 << 20;
+
+// The capsules of one Hair, strand after strand, root first.
+std::vector<Capsule> hair_strands(const Hair& hair);
+
+enum class LightShape { Rectangle, Disk, Point };
+
+// A one-sided light centred on `center`, emitting towards `normal` (into the
+// half-space in front of it). Its frame is basis_looking_along(normal, up):
+// the rectangle spans `width` along s and `height` along t; a disk has
+// diameter `width` (and height == width); a point light (a spot, with the
+// light camera's frustum for its cone) has width == height == 0.
 struct AreaLight {
     LightShape shape = LightShape::Rectangle;
     Vec3 center{0, 10, 0};
@@ -85,6 +150,8 @@ struct Scene {
     std::string name;
     std::string description;
     std::vector<Primitive> primitives;
+    std::vector<Medium> media;
+    std::vector<Hair> hair;
     AreaLight light;
     LightCamera light_camera;
     ViewCamera view;
@@ -106,10 +173,18 @@ Scene scene_from_json(std::string_view text, std::string_view source_name = "<st
 std::string scene_to_json(const Scene& scene);
 void save_scene(const Scene& scene, const std::filesystem::path& path);
 
-// The built-in scenes, each named for the failure it provokes: contact,
-// overlap, fence, grazing, large. An unknown name throws Error(InvalidArgument)
+// What a ray meets: the primitives, then every Hair's capsules in order
+// (hair_strands). Hit::primitive and RayEvent::index count in this list.
+std::vector<Primitive> scene_surfaces(const Scene& scene);
+
+// The built-in scenes, each named for the failure it provokes. Opaque: the
+// shadow-map scenes under area lights (contact, overlap, fence, grazing,
+// large), which the demo runs. Deep: the deep-shadow scenes under point
+// lights (hair, fog, layers), whose shadows are fractions: thin strands,
+// fog, semi-transparent layers. An unknown name throws Error(InvalidArgument)
 // listing the valid ones.
-std::vector<std::string> builtin_scene_names();
+enum class SceneSet { Opaque, Deep, All };
+std::vector<std::string> builtin_scene_names(SceneSet set = SceneSet::Opaque);
 Scene builtin_scene(std::string_view name);
 
 }  // namespace penumbra::reference
