@@ -3,6 +3,7 @@
 // touching a frame buffer: the C++ InputFile of OpenEXR 3.1 zero-pads a chunk
 // that decompresses short and hands the caller whatever its buffer held.
 #include "exr_validate.h"
+#include "exr_core.h"
 #include "exr_zip_inflate.h"
 
 #include <OpenEXR/openexr.h>
@@ -31,77 +32,6 @@ std::string printable(std::string text)
     return text;
 }
 
-// The core library reports through a callback; keep the first message.
-struct Reading {
-    const InputFile* file;
-    std::mutex mutex;
-    std::string first_error;
-};
-
-void record_error(exr_const_context_t ctxt, exr_result_t, const char* message)
-{
-    void* user = nullptr;
-    if (exr_get_user_data(ctxt, &user) != EXR_ERR_SUCCESS || !user) return;
-    auto* reading = static_cast<Reading*>(user);
-    const std::lock_guard lock(reading->mutex);
-    if (reading->first_error.empty() && message) reading->first_error = message;
-}
-
-int64_t read_bytes(exr_const_context_t, void* user, void* buffer, uint64_t size, uint64_t offset,
-                   exr_stream_error_func_ptr_t)
-{
-    const InputFile& file = *static_cast<Reading*>(user)->file;
-    if (offset >= file.size()) return 0;
-    const uint64_t count = std::min<uint64_t>(size, file.size() - offset);
-    return file.read_at(offset, buffer, std::size_t(count)) ? int64_t(count) : -1;
-}
-
-int64_t file_size(exr_const_context_t, void* user) { return int64_t(static_cast<Reading*>(user)->file->size()); }
-
-class CoreContext {
-public:
-    CoreContext(Reading& reading, std::string_view operation) : reading_(reading), operation_(operation)
-    {
-        exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-        init.error_handler_fn = record_error;
-        init.read_fn = read_bytes;
-        init.size_fn = file_size;
-        init.user_data = &reading;
-        check(exr_start_read(&ctxt_, reading.file->path().c_str(), &init), "its header cannot be read");
-    }
-    ~CoreContext() { exr_finish(&ctxt_); }
-    CoreContext(const CoreContext&) = delete;
-    CoreContext& operator=(const CoreContext&) = delete;
-
-    exr_const_context_t get() const { return ctxt_; }
-
-    // A layout the core library accepted but that no reader can walk.
-    [[noreturn]] void refuse(const std::string& what) const
-    {
-        throw Error(ErrorCategory::Io, operation_,
-                    in_quotes(reading_.file->path()) + " is corrupt: " + what + "; re-create the file");
-    }
-
-    void check(exr_result_t result, const std::string& what) const
-    {
-        if (result == EXR_ERR_SUCCESS) return;
-        std::string detail;
-        {
-            const std::lock_guard lock(reading_.mutex);
-            detail = reading_.first_error;
-        }
-        if (detail.empty()) detail = exr_get_default_error_message(result);
-        throw Error(ErrorCategory::Io, operation_,
-                    in_quotes(reading_.file->path()) + " is corrupt or truncated: " + what + " (" + detail +
-                        "); re-create the file");
-    }
-
-private:
-    Reading& reading_;
-    std::string_view operation_;
-    exr_context_t ctxt_ = nullptr;
-};
-
 std::uint64_t bytes_per_pixel(const CoreContext& core)
 {
     const exr_attr_chlist_t* channels = nullptr;
@@ -110,49 +40,6 @@ std::uint64_t bytes_per_pixel(const CoreContext& core)
     for (int c = 0; c < channels->num_channels; ++c)
         bytes += channels->entries[c].pixel_type == EXR_PIXEL_HALF ? 2 : 4;
     return bytes;
-}
-
-// Runs `body(chunk, x0, y0, where)` for every chunk (scanline block, or tile of
-// level 0, the level read_exr reads), in parallel, after reading its table
-// entry; (x0, y0) is the chunk's first pixel relative to the data window. (In
-// OpenEXR 3.1's core, a tile's start_x/start_y are tile indices, a scanline
-// block's are pixel coordinates.)
-template <class Body>
-void for_each_chunk(const CoreContext& core, exr_storage_t storage, const exr_attr_box2i_t& window, Body&& body)
-{
-    if (storage == EXR_STORAGE_SCANLINE) {
-        int32_t lines = 0;
-        core.check(exr_get_scanlines_per_chunk(core.get(), 0, &lines), "its chunk layout cannot be read");
-        // 0 for a scanline file whose header also holds a `tiles` attribute (found by exr_reader_fuzz).
-        if (lines <= 0) core.refuse("it claims " + std::to_string(lines) + " scanlines per chunk");
-        const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
-        const std::int64_t chunks = (height + lines - 1) / lines;
-        tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, chunks), [&](const tbb::blocked_range<std::int64_t>& r) {
-            for (std::int64_t i = r.begin(); i < r.end(); ++i) {
-                const int y = int(window.min.y + i * lines);
-                exr_chunk_info_t chunk{};
-                const std::string where = "the scanlines from y = " + std::to_string(y);
-                core.check(exr_read_scanline_chunk_info(core.get(), 0, y, &chunk), where + " are missing");
-                body(chunk, 0, int(i * lines), where);
-            }
-        });
-        return;
-    }
-    int32_t tile_w = 0, tile_h = 0, level_w = 0, level_h = 0;
-    core.check(exr_get_tile_sizes(core.get(), 0, 0, 0, &tile_w, &tile_h), "its tile size cannot be read");
-    core.check(exr_get_level_sizes(core.get(), 0, 0, 0, &level_w, &level_h), "its level size cannot be read");
-    if (tile_w <= 0 || tile_h <= 0 || level_w < 0 || level_h < 0)
-        core.refuse("it claims tiles of " + std::to_string(tile_w) + "x" + std::to_string(tile_h));
-    const int across = (level_w + tile_w - 1) / tile_w, down = (level_h + tile_h - 1) / tile_h;
-    tbb::parallel_for(tbb::blocked_range<int>(0, down), [&](const tbb::blocked_range<int>& rows) {
-        for (int ty = rows.begin(); ty < rows.end(); ++ty)
-            for (int tx = 0; tx < across; ++tx) {
-                exr_chunk_info_t chunk{};
-                const std::string where = "tile (" + std::to_string(tx) + ", " + std::to_string(ty) + ")";
-                core.check(exr_read_tile_chunk_info(core.get(), 0, tx, ty, 0, 0, &chunk), where + " is missing");
-                body(chunk, tx * tile_w, ty * tile_h, where);
-            }
-    });
 }
 
 // Reads and decompresses one chunk, unpacking the channels `destination` gives
@@ -334,37 +221,8 @@ void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::strin
     const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
     const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
     if (width <= 0 || height <= 0) return;  // read_exr names an empty window itself
-    const auto pixels = std::uint64_t(width) * std::uint64_t(height);
     const std::string size_text = std::to_string(width) + "x" + std::to_string(height);
-    if (pixels > limits.max_pixels)
-        throw Error(ErrorCategory::Io, operation,
-                    in_quotes(file.path()) + " declares a " + size_text + " data window, " + std::to_string(pixels) +
-                        " pixels, more than the limit of " + std::to_string(limits.max_pixels) +
-                        " (raise it with --max-pixels N / ExrReadLimits::max_pixels if the file is genuine)");
-    // OpenEXR's C++ reader allocates the chunk offset table (8 bytes a chunk,
-    // every tile of every level) from the header; a file holds at least that.
-    int32_t chunk_count = 0;
-    core.check(exr_get_chunk_count(core.get(), 0, &chunk_count), "its chunk count cannot be read");
-    if (chunk_count < 0 || std::uint64_t(chunk_count) * 8 > file.size())
-        throw Error(ErrorCategory::Io, operation,
-                    in_quotes(file.path()) + " declares " + std::to_string(chunk_count) + " chunks, whose offset table alone its " +
-                        std::to_string(file.size()) + " bytes cannot hold; the header is corrupt or the file truncated");
-    // Its tiled reader also keeps a buffer of a row of tiles (the window's width
-    // times the tile height) and one tile: bound both by the image itself, plus
-    // room for tiles larger than a small image.
-    if (l.storage == EXR_STORAGE_TILED) {
-        uint32_t tile_w = 0, tile_h = 0;
-        exr_tile_level_mode_t levels{};
-        exr_tile_round_mode_t rounding{};
-        core.check(exr_get_tile_descriptor(core.get(), 0, &tile_w, &tile_h, &levels, &rounding),
-                   "its tile description cannot be read");
-        const std::uint64_t room = pixels + (std::uint64_t(1) << 22);
-        if (std::uint64_t(tile_w) * tile_h > room || std::uint64_t(width) * tile_h > room ||
-            std::uint64_t(tile_w) * std::uint64_t(height) > room)
-            throw Error(ErrorCategory::Io, operation,
-                        in_quotes(file.path()) + " declares " + std::to_string(tile_w) + "x" + std::to_string(tile_h) +
-                            " tiles for a " + size_text + " image; the header is corrupt");
-    }
+    check_declared_sizes(core, window, limits, l.storage == EXR_STORAGE_TILED);
     // Its scanline reader sizes each line buffer for a whole chunk of lines
     // (up to 256 for DWAB), however few lines the image has: count those rows.
     std::int64_t rows = height;
@@ -383,7 +241,8 @@ void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::strin
                         "the header is corrupt or the file truncated");
     if (chunks == ChunkCheck::Skip) return;
     // Decompress and discard; without a decoder (DWA), the table entries are what can be checked.
-    for_each_chunk(core, l.storage, window, [&](const exr_chunk_info_t& chunk, int, int, const std::string& where) {
+    const bool tiled = l.storage == EXR_STORAGE_TILED;
+    for_each_chunk(core, tiled, window, [&](const exr_chunk_info_t& chunk, int, int, const std::string& where) {
         if (core_decodes(l.compression))
             core.check(decode_chunk(core, chunk, [](exr_coding_channel_info_t&) {}), where + " cannot be decoded");
     });
@@ -397,7 +256,7 @@ bool decode_exr(const InputFile& file, const std::vector<std::string>& channels,
     const Layout l = layout_of(core, file, operation);
     if (!core_decodes(l.compression)) return false;
     const std::size_t row_bytes = std::size_t(image.pitch()) * sizeof(float);
-    for_each_chunk(core, l.storage, l.window, [&](const exr_chunk_info_t& chunk, int x0, int y0,
+    for_each_chunk(core, l.storage == EXR_STORAGE_TILED, l.window, [&](const exr_chunk_info_t& chunk, int x0, int y0,
                                                   const std::string& where) {
         // The chunk's pixels land at their place in the data window, as floats.
         if (x0 + chunk.width > image.width() || y0 + chunk.height > image.height())

@@ -39,6 +39,11 @@ void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::strin
 bool decode_exr(const InputFile& file, const std::vector<std::string>& channels, Image& image,
                 std::string_view operation);
 
+// Throws Error(Io) naming the file unless its header walks as OpenEXR 3.1's C++
+// reader walks it: no attribute claims more bytes than follow it or a size its
+// type does not take, none is named twice (exr_validate.cpp says why).
+void check_attribute_sizes(const InputFile& file, std::string_view operation);
+
 // Decoded bytes per stored byte, at most, for an OpenEXR compression code
 // (exr_compression_t); the figures, their sources and the one stated policy
 // (DWA) are in exr_validate.cpp.

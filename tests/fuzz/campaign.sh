@@ -13,8 +13,8 @@ usage="usage: campaign.sh BUILD_DIR SECONDS OUT_DIR [TARGET...]"
 build=${1:?$usage} seconds=${2:?$usage} out=${3:?$usage}
 shift 3
 targets=("$@")
-((${#targets[@]})) || targets=(exr_reader_fuzz scene_json_fuzz sdf_grid_fuzz)
-declare -A seeds=([exr_reader_fuzz]=exr [scene_json_fuzz]=scene [sdf_grid_fuzz]=grid)
+((${#targets[@]})) || targets=(exr_reader_fuzz deep_exr_reader_fuzz scene_json_fuzz sdf_grid_fuzz)
+declare -A seeds=([exr_reader_fuzz]=exr [deep_exr_reader_fuzz]=deep [scene_json_fuzz]=scene [sdf_grid_fuzz]=grid)
 [[ -d $out/seeds ]] || bash "$(dirname "$0")/make_corpus.sh" "$build" "$out/seeds"
 mkdir -p "$out/artifacts"
 for target in "${targets[@]}"; do

@@ -5,6 +5,7 @@
 #   tests/fuzz/make_corpus.sh BUILD_DIR OUT_DIR
 #
 # OUT_DIR/exr    exr_seeds: every compression, scanline and tiled, FLOAT/HALF/UINT
+# OUT_DIR/deep   deep_exr_seeds: deep maps as penumbra writes them and as others might
 # OUT_DIR/scene  scene_seeds: every built-in scene as JSON
 # OUT_DIR/grid   `penumbra sdf-bake` of each of those scenes, at the finest voxel
 #                (from 32 down to 0.5, halving) whose grid stays under 64 KB, so
@@ -13,8 +14,9 @@
 set -euo pipefail
 build=${1:?usage: make_corpus.sh BUILD_DIR OUT_DIR}
 out=${2:?usage: make_corpus.sh BUILD_DIR OUT_DIR}
-mkdir -p "$out/exr" "$out/scene" "$out/grid"
+mkdir -p "$out/exr" "$out/deep" "$out/scene" "$out/grid"
 "$build/tests/fuzz/exr_seeds" "$out/exr"
+"$build/tests/fuzz/deep_exr_seeds" "$out/deep"
 "$build/tests/fuzz/scene_seeds" "$out/scene"
 for scene in "$out"/scene/*.json; do
   name=$(basename "$scene" .json)

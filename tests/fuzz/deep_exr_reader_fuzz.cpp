@@ -1,0 +1,32 @@
+// libFuzzer target: the deep shadow map reader (host/src/deep_exr_read.cpp,
+// deep_exr_samples.cpp), docs/deep_shadow_maps.md "Bad input".
+//
+// Oracle: every input either reads, into a map whose invariants hold, or
+// throws penumbra::Error. Anything else is a finding: a sanitizer report, a
+// signal, another exception escaping (Iex or std::bad_alloc included), or an
+// allocation above libFuzzer's -malloc_limit_mb.
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+
+#include "fuzz_input_file.h"
+#include "penumbra/deep_exr.h"
+#include "penumbra/error.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+    const std::string& path = penumbra::fuzz::input_as_file(data, size, ".exr");
+    try {
+        const penumbra::DeepShadowMap map = penumbra::read_deep_exr(path);
+        // The reader promises a valid map: every pixel's function evaluates.
+        for (int y = 0; y < map.height(); ++y)
+            for (int x = 0; x < map.width(); ++x) {
+                const float v = map.visibility(x, y, 1e30f);
+                if (!(v >= 0.0f && v <= 1.0f)) std::abort();
+            }
+    } catch (const penumbra::Error&) {
+        // A refused file: the expected outcome for almost every mutated input.
+    }
+    return 0;
+}
