@@ -34,10 +34,20 @@ struct WeightedSample {
 // in pixel units (deep_map.h: truncated at kDeepGaussianRadius, separable).
 double gaussian_weight(double dx, double dy);
 
-// Sum_k w_k f_k(z), the paper's filtered visibility, evaluated at the union of
-// the samples' vertex depths, written as a function (deep_shadow_map.h) to
-// out_z, out_t (replacing their contents).
-void combine_functions(const SampleSet& set, std::span<const WeightedSample> samples, std::vector<float>& out_z,
-                       std::vector<float>& out_t);
+// What combine_functions reuses from one pixel to the next.
+struct CombineScratch {
+    struct Entry {
+        float z;
+        std::uint32_t sample, vertex;  // into the span of samples; into the set's vertices
+    };
+    std::vector<Entry> entries;
+    std::vector<double> slopes;
+};
+
+// Sum_k w_k f_k(z), the paper's filtered visibility, at the union of the
+// samples' vertex depths (both sides of each depth where one steps), written
+// as a function (deep_shadow_map.h) to out_z, out_t (replacing their contents).
+void combine_functions(const SampleSet& set, std::span<const WeightedSample> samples, CombineScratch& scratch,
+                       std::vector<float>& out_z, std::vector<float>& out_t);
 
 }  // namespace penumbra::reference

@@ -109,12 +109,13 @@ void render_band(const Setup& s, int j0, int j1, std::vector<RowOut>& rows, std:
         for (int i = -s.halo; i < n + s.halo; ++i) trace_pixel(s, i, j, set);
     traced = set.x.size();
     std::vector<WeightedSample> weights;
+    CombineScratch scratch;
     std::vector<float> fz, ft;
     for (int j = j0; j < j1; ++j) {
         RowOut& row = rows[std::size_t(j)];
         for (int i = 0; i < n; ++i) {
             pixel_samples(s, set, i, j, row0, width, weights);
-            combine_functions(set, weights, fz, ft);
+            combine_functions(set, weights, scratch, fz, ft);
             row.filtered += fz.size();
             compress_visibility(fz, ft, s.tolerance, row.z, row.t);
             row.first.push_back(std::uint32_t(row.z.size()));
