@@ -7,6 +7,7 @@
 // one T_k, which compression then removes.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "deep_map_parts.h"
 #include "penumbra/error.h"
@@ -25,6 +26,10 @@ const char* deep_map_filter_name(DeepMapFilter filter) { return filter == DeepMa
 
 void SampleSet::add(double sx, double sy, const RayFunction& f)
 {
+    // 32-bit vertex indices: reached only by a single band row of ~16k pixels
+    // with thousands of samples through dense fog.
+    require(z.size() + f.z.size() <= std::numeric_limits<std::uint32_t>::max(), "render_deep_shadow_map", "samples",
+            "one band of rows holds more than 2^32 - 1 sample vertices; use fewer samples or a smaller map");
     z.insert(z.end(), f.z.begin(), f.z.end());
     t.insert(t.end(), f.t.begin(), f.t.end());
     first.push_back(std::uint32_t(z.size()));

@@ -2,12 +2,15 @@
 // plane, the bands of rows the work is split into, and the assembly of the
 // compressed pixels into a DeepShadowMap.
 //
-// Schedule: bands of kBandRows rows over TBB. A band traces the samples of
-// its pixels and, for the Gaussian, of a one-pixel halo around them (the
+// Schedule: bands of up to kBandRows rows over TBB. A band traces the samples
+// of its pixels and, for the Gaussian, of a one-pixel halo around them (the
 // samples of neighbouring pixels within its radius), so no sample is traced
 // twice inside a band; across bands the halo rows are traced again, 2 of
-// every kBandRows + 2 rows. Every pixel's samples come from its own stream,
+// every 16 + 2 rows. A band holds at most about kBandSamples samples (at
+// some 60 bytes each with their vertices), so wide maps with many samples get
+// fewer rows per band (down to 1, where the Gaussian traces 3 rows per row). Every pixel's samples come from its own stream,
 // so the map does not depend on the bands or the thread count.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <tbb/blocked_range.h>
@@ -24,6 +27,13 @@ namespace {
 
 constexpr const char* kOperation = "render_deep_shadow_map";
 constexpr int kBandRows = 16;
+constexpr std::size_t kBandSamples = std::size_t(1) << 21;
+
+int band_rows(const DeepMapOptions& o)
+{
+    const std::size_t row_samples = (std::size_t(o.size) + 2) * std::size_t(o.samples);
+    return int(std::clamp<std::size_t>(kBandSamples / row_samples, 1, kBandRows));
+}
 
 // A stratum grid of exactly K cells: `rows` the largest divisor of K not
 // above sqrt(K), so a square K gets a square grid and a prime K strips.
@@ -165,13 +175,14 @@ DeepShadowMap render_deep_shadow_map(const Scene& scene, const DeepMapOptions& o
                       Strata(o.samples),
                       o.filter == DeepMapFilter::Box ? 0 : int(std::ceil(kDeepGaussianRadius - 0.5))};
     std::vector<RowOut> rows(std::size_t(o.size));
-    const int bands = (o.size + kBandRows - 1) / kBandRows;
+    const int rows_per_band = band_rows(o);
+    const int bands = (o.size + rows_per_band - 1) / rows_per_band;
     std::vector<std::size_t> traced(std::size_t(bands), 0);
     tbb::parallel_for(
         tbb::blocked_range<int>(0, bands, 1),
         [&](const tbb::blocked_range<int>& range) {
             for (int b = range.begin(); b != range.end(); ++b)
-                render_band(setup, b * kBandRows, std::min(o.size, (b + 1) * kBandRows), rows,
+                render_band(setup, b * rows_per_band, std::min(o.size, (b + 1) * rows_per_band), rows,
                             traced[std::size_t(b)]);
         },
         tbb::simple_partitioner());
