@@ -22,16 +22,22 @@
 namespace penumbra::cli {
 namespace {
 
-const char* kHelp =
-    "usage: penumbra dsm-build --scene NAME|SCENE.json --out DSM.exr [--size N] [--samples K]\n"
-    "                          [--tolerance E] [--filter box|gaussian] [--seed S]\n"
-    "  a deep shadow map (Lokovic and Veach 2000) of a reference scene, as an OpenEXR deep file\n"
-    "  --size N          the map is N x N pixels, N in [1, 16384] (default 512)\n"
-    "  --samples K       stratified jittered light rays per pixel, in [1, 4096] (default 16)\n"
-    "  --tolerance E     compression error bound in [0, 1] (default 0.25/sqrt(K), the paper's)\n"
-    "  --filter F        box (the pixel's own samples, default) or gaussian (radius 1 pixel,\n"
-    "                    sigma 1/2: the samples within one pixel of its centre)\n"
-    "  --seed S          names the samples' streams (default 0)\n";
+std::string help()
+{
+    char gaussian[128];
+    std::snprintf(gaussian, sizeof gaussian, "radius %g pixel, sigma %g", reference::kDeepGaussianRadius,
+                  reference::kDeepGaussianSigma);
+    return "usage: penumbra dsm-build --scene NAME|SCENE.json --out DSM.exr [--size N] [--samples K]\n"
+           "                          [--tolerance E] [--filter box|gaussian] [--seed S]\n"
+           "  a deep shadow map (Lokovic and Veach 2000) of a reference scene, as an OpenEXR deep file\n"
+           "  --size N          the map is N x N pixels, N in [1, 16384] (default 512)\n"
+           "  --samples K       stratified jittered light rays per pixel, in [1, 4096] (default 16)\n"
+           "  --tolerance E     compression error bound in [0, 1] (default 0.25/sqrt(K), the paper's)\n"
+           "  --filter F        box (the pixel's own samples, default) or gaussian (" +
+           std::string(gaussian) + "):\n"
+           "                    the samples within the radius of the pixel's centre, its neighbours' too\n"
+           "  --seed S          names the samples' streams (default 0)\n";
+}
 
 // The library names its option; the tool names its flag.
 [[noreturn]] void reword(const Error& e)
@@ -72,7 +78,7 @@ int dsm_build_command(const std::vector<std::string>& argv)
     const Args args(argv, {"--scene", "--out", "--size", "--samples", "--tolerance", "--filter", "--seed"},
                     {"--help"});
     if (args.flag("--help")) {
-        std::cout << kHelp;
+        std::cout << help();
         return 0;
     }
     const std::string scene_arg = args.required("--scene");
