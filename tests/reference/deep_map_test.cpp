@@ -66,9 +66,9 @@ double stack_visibility(const std::vector<Layer>& layers, double z)
     return v;
 }
 
-// Uncompressed (tolerance 0) every pixel is the closed form within float
-// rounding; compressed with the default tolerance the steps stay at their
-// depths and the values within it.
+// With either filter: uncompressed (tolerance 0) every pixel is the closed
+// form within float rounding; compressed with the default tolerance the steps
+// stay at their depths and the values within it.
 void expect_stack(const std::vector<Layer>& layers)
 {
     std::string primitives;
@@ -78,19 +78,21 @@ void expect_stack(const std::vector<Layer>& layers)
     for (const Layer& l : layers) steps.insert(steps.end(), 2, float(overhead_z(l.top)));
     steps.insert(steps.end(), 2, float(overhead_z(0)));
     const std::vector<float> probes = probe_depths({overhead_z(0), overhead_z(layers[0].top), overhead_z(layers.back().top)});
-    for (std::optional<float> tolerance : {std::optional<float>(0.0f), std::optional<float>()}) {
-        DeepMapStats stats;
-        const DeepShadowMap map = render_deep_shadow_map(scene, options(8, 16, DeepMapFilter::Box, tolerance), &stats);
-        const double bound = tolerance ? 1e-6 : stats.tolerance + 1e-6;
-        for (int y = 0; y < 8; ++y)
-            for (int x = 0; x < 8; ++x) {
-                const auto z = map.depths(x, y);
-                ASSERT_EQ(z.size(), steps.size()) << x << "," << y;
-                for (std::size_t i = 0; i < z.size(); ++i)
-                    EXPECT_FLOAT_EQ(z[i], steps[i]) << x << "," << y << " vertex " << i;
-                for (float d : probes)
-                    ASSERT_NEAR(map.visibility(x, y, d), stack_visibility(layers, d), bound) << x << "," << y << " z " << d;
-            }
+    for (DeepMapFilter filter : {DeepMapFilter::Box, DeepMapFilter::Gaussian}) {
+        for (std::optional<float> tolerance : {std::optional<float>(0.0f), std::optional<float>()}) {
+            DeepMapStats stats;
+            const DeepShadowMap map = render_deep_shadow_map(scene, options(8, 16, filter, tolerance), &stats);
+            const double bound = tolerance ? 1e-6 : stats.tolerance + 1e-6;
+            for (int y = 0; y < 8; ++y)
+                for (int x = 0; x < 8; ++x) {
+                    const auto z = map.depths(x, y);
+                    ASSERT_EQ(z.size(), steps.size()) << x << "," << y;
+                    for (std::size_t i = 0; i < z.size(); ++i)
+                        EXPECT_FLOAT_EQ(z[i], steps[i]) << x << "," << y << " vertex " << i;
+                    for (float d : probes)
+                        ASSERT_NEAR(map.visibility(x, y, d), stack_visibility(layers, d), bound) << x << "," << y << " z " << d;
+                }
+        }
     }
 }
 
@@ -109,16 +111,18 @@ TEST(DeepMap, FogSlabIsBeerLambertWithinTheToleranceAndTheVolumeBound)
         return std::exp(-k * std::clamp(testing::overhead_depth(z) - 2, 0.0, 2.0));
     };
     const std::vector<float> probes = probe_depths({overhead_z(0)});
-    for (int samples : {1, 4, 16}) {
-        DeepMapStats stats;
-        const DeepShadowMap map = render_deep_shadow_map(scene, options(4, samples), &stats);
-        EXPECT_FLOAT_EQ(stats.tolerance, 0.25f / std::sqrt(float(samples)));
-        const double bound = stats.tolerance + stats.volume_error + 1e-6;
-        EXPECT_LT(stats.compressed_vertices, stats.filtered_vertices);
-        for (int y = 0; y < 4; ++y)
-            for (int x = 0; x < 4; ++x)
-                for (float d : probes)
-                    ASSERT_NEAR(map.visibility(x, y, d), exact(d), bound) << samples << " samples, " << x << "," << y;
+    for (DeepMapFilter filter : {DeepMapFilter::Box, DeepMapFilter::Gaussian}) {
+        for (int samples : {1, 4, 16}) {
+            DeepMapStats stats;
+            const DeepShadowMap map = render_deep_shadow_map(scene, options(4, samples, filter), &stats);
+            EXPECT_FLOAT_EQ(stats.tolerance, 0.25f / std::sqrt(float(samples)));
+            const double bound = stats.tolerance + stats.volume_error + 1e-6;
+            EXPECT_LT(stats.compressed_vertices, stats.filtered_vertices);
+            for (int y = 0; y < 4; ++y)
+                for (int x = 0; x < 4; ++x)
+                    for (float d : probes)
+                        ASSERT_NEAR(map.visibility(x, y, d), exact(d), bound) << samples << " samples, " << x << "," << y;
+        }
     }
 }
 
