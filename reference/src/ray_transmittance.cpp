@@ -17,6 +17,10 @@ namespace {
 // the ray is inside, and the vertices written.
 class Sweep {
 public:
+    // Steps per span at most: where the rule asks for more (a medium of
+    // extinction ~10^5 per unit over metres), the volume error is not met.
+    static constexpr int kMaxSteps = 1 << 16;
+
     Sweep(const PreparedScene& prepared, const LightProjection& projection, const Ray& ray, double volume_error)
         : prepared_(prepared), projection_(projection), ray_(ray), volume_error_(volume_error)
     {
@@ -44,16 +48,21 @@ public:
         const double span = scale * (t - t_);
         const double bound = std::max(k0, k1) * std::max(k0, k1) + std::abs(k1 - k0) / span;
         const double step = std::sqrt(8 * volume_error_ / bound);
-        const int steps = bound > 0 ? std::max(1, int(std::ceil(span / step))) : 1;
+        // In double first: a dense medium over a long span would overflow an int.
+        const int steps = int(std::clamp(std::ceil(span / step), 1.0, double(kMaxSteps)));
         const double t_start = t_;
         double k_prev = k0;
         for (int i = 1; i <= steps; ++i) {
-            const double ti = i == steps ? t : t_start + (t - t_start) * i / steps;
-            const double ki = i == steps ? k1 : extinction(ti);
+            // Once T is within volume_error of 0, a chord to the span's end is
+            // too (T stays between its end values), so the rest is one step.
+            const bool last = i == steps || value() <= volume_error_;
+            const double ti = last ? t : t_start + (t - t_start) * i / steps;
+            const double ki = last ? k1 : extinction(ti);
             tau_ += 0.5 * (k_prev + ki) * scale * (ti - t_);  // trapezoid: exact for linear k
             t_ = ti;
             k_prev = ki;
             vertex(ti, value());
+            if (last) break;
         }
     }
 

@@ -154,6 +154,22 @@ TEST(DeepMap, RayFunctionIsWithinTheVolumeErrorOfTheExactTransmittance)
     }
 }
 
+// A dense medium (k = 10^4 per metre over 2 m) ends its march once T is
+// within the volume error of 0: a handful of vertices, still within the bound.
+TEST(DeepMap, DenseMediumEndsItsMarchOnceTIsNearZero)
+{
+    const Scene scene = overhead_scene("", R"({"type": "box", "center": [0, 2, 0], "size": [40, 2, 40], "extinction": 10000})");
+    const PreparedScene prepared(scene);
+    const LightProjection light(scene);
+    const Ray ray = light.ray_through(0.5, 0.5);
+    const RayFunction f = ray_transmittance(prepared, light, ray, 1, 6, 0.01);
+    EXPECT_LT(f.z.size(), 100u);
+    std::vector<float> t(f.t.begin(), f.t.end());
+    for (float z : probe_depths({overhead_z(0)}))
+        ASSERT_NEAR(deep_visibility(f.z, t, z), prepared.transmittance(ray, 1, testing::overhead_depth(z)), 0.01 + 1e-6)
+            << "z " << z;
+}
+
 // Every function of the deep scenes is a valid one (the builder checks it)
 // and, evaluated densely, non-increasing and in [0, 1].
 TEST(DeepMap, DeepScenesGiveMonotoneFunctionsInTheUnitInterval)

@@ -78,7 +78,10 @@ DeepShadowMap render_deep_shadow_map(const Scene& scene, const DeepMapOptions& o
 //    A span of world length L gets n = ceil(L / h) equal steps with
 //    h = sqrt(8 volume_error / (k_max^2 + |dk/ds|)), the largest step for
 //    which linear interpolation of exp(-tau) stays within volume_error
-//    (|T''| <= k^2 + |dk/ds| for T <= 1).
+//    (|T''| <= k^2 + |dk/ds| for T <= 1); once T <= volume_error the span
+//    ends in one step (T stays between its end values), and a span takes at
+//    most 2^16 steps (beyond, for media of extinction ~10^5, the bound is not
+//    met).
 struct RayFunction {
     std::vector<float> z;
     std::vector<double> t;
