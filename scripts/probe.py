@@ -253,6 +253,7 @@ SDF_SHADE = ["sdf-shade", "--grid", "grid.pnsdf", "--receivers", "rx.exr", "--ou
              "--light-position", "0,5,0", "--backend", "simd"]
 SDF_SCENE = ["sdf-shade", "--scene", "scene.json", "--receivers", "rx.exr", "--out", "out.exr", "--backend", "simd"]
 SDF_BAKE = ["sdf-bake", "--scene", "scene.json", "--out", "out.pnsdf", "--voxel", "0.5"]
+DSM_BUILD = ["dsm-build", "--scene", "scene.json", "--out", "out.exr", "--size", "16", "--samples", "4"]
 RENDER = ["render-scene", "scene.json", "--map-size", "32", "--view-size", "16x12", "--samples", "4",
           "--shadow-map", "o_sm.exr", "--receivers", "o_rx.exr", "--truth", "o_gt.exr"]
 EXAMPLE = ["example", "--out", "exdir", "--map-size", "32"]
@@ -288,6 +289,7 @@ def patch_channel_name(path, old, new):
 FILE_INPUTS = [  # (command, option, inputs that must stay as they were)
     (SHADE, "--shadow-map"), (SHADE, "--receivers"), (BLUR, "--in"), (BLUR, "--guide"),
     (SDF_SHADE, "--grid"), (SDF_SHADE, "--receivers"), (SDF_SCENE, "--scene"), (SDF_BAKE, "--scene"),
+    (DSM_BUILD, "--scene"),
 ]
 
 
@@ -340,7 +342,7 @@ def setup_for(command):
 
 # The files each command reads: an output may not replace them.
 INPUTS_OF = {"shade": ("sm.exr", "rx.exr"), "blur": ("gt.exr", "sm_as_guide.exr"), "sdf-shade": ("grid.pnsdf", "rx.exr"),
-             "sdf-bake": ("scene.json",), "render-scene": ("scene.json",)}
+             "sdf-bake": ("scene.json",), "render-scene": ("scene.json",), "dsm-build": ("scene.json",)}
 
 
 def cases_file_faults(quick):
@@ -443,6 +445,7 @@ VALUED = {
     "sdf-shade": (SDF_SHADE, ["--k", "--light-width", "--light-position", "--t-min", "--t-max", "--max-steps",
                               "--hit-epsilon", "--normal-offset", "--estimate"]),
     "sdf-bake": (SDF_BAKE, ["--voxel", "--margin"]),
+    "dsm-build": (DSM_BUILD, ["--size", "--samples", "--tolerance", "--filter", "--seed"]),
     "render-scene": (RENDER, ["--map-size", "--view-size", "--samples"]),
     "example": (EXAMPLE, ["--map-size"]),
     "demo": (DEMO, ["--method", "--scene", "--map-size", "--view-size", "--samples", "--frames", "--backend"]),
@@ -461,7 +464,7 @@ def cases_garbage_options(quick):
         cases.append(Case("garbage options", command[:-1], setup=setup_for(command)))  # the last option, no value
     cases.append(Case("garbage options", [], expect=("refuse",)))
     cases.append(Case("garbage options", ["no-such-command"]))
-    for name in ["shade", "blur", "render-scene", "demo", "sdf-shade", "sdf-bake", "example", "info"]:
+    for name in ["shade", "blur", "render-scene", "demo", "sdf-shade", "sdf-bake", "dsm-build", "example", "info"]:
         cases.append(Case("garbage options", [name, "--out", "x", "--help"], expect=("ok",)))
     return cases
 
@@ -474,7 +477,7 @@ def device_nodes(scratch):
 
 
 def cases_odd_outputs(quick):
-    writers = [(SHADE, "--out"), (BLUR, "--out"), (SDF_SHADE, "--out"), (SDF_BAKE, "--out"),
+    writers = [(SHADE, "--out"), (BLUR, "--out"), (SDF_SHADE, "--out"), (SDF_BAKE, "--out"), (DSM_BUILD, "--out"),
                (RENDER, "--shadow-map"), (RENDER, "--truth")]
     # The device nodes are private copies of /dev/full and /dev/null in the
     # scratch folder: an old binary replaces what it is given, and replacing the

@@ -39,6 +39,8 @@ const std::vector<Command>& commands()
         {"example", "--out DIR", "write a small synthetic shadow map and receivers to DIR", example_command},
         {"render-scene", "NAME --shadow-map SM.exr --receivers RX.exr --truth GT.exr [options]",
          "a reference scene and its ray-traced ground truth", render_scene_command},
+        {"dsm-build", "--scene S --out DSM.exr [--size N] [--samples K] [--tolerance E] [--filter box|gaussian]",
+         "a reference scene's deep shadow map, as an OpenEXR deep file (dsm-build --help)", dsm_build_command},
         {"demo", "[--quick] [--out DIR]", "every method on every scene: images, CSV, time-vs-error chart",
          demo_command},
         {"blur", "--in MASK.exr --guide DEPTH.exr --out OUT.exr [options]",

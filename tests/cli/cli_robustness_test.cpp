@@ -201,7 +201,7 @@ TEST_F(CliRobustness, NoArgumentsPrintsAUsageLineOnStderr)
 TEST_F(CliRobustness, HelpIsAcceptedAnywhereByEveryCommand)
 {
     for (const char* command : {"info", "shade", "example", "render-scene", "demo", "blur", "sdf-shade",
-                                      "sdf-bake"}) {
+                                      "sdf-bake", "dsm-build"}) {
         const auto run = run_cli({command, "--out", path("x"), "--help"});
         EXPECT_EQ(run.exit_code, 0) << command << ": " << run.err;
         EXPECT_NE(run.out.find("usage"), std::string::npos) << command;

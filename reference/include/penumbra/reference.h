@@ -1,9 +1,10 @@
 // The reference side in one include (the penumbra::reference target):
-// scenes, renders, ground truth, light space, ray casting
+// scenes, renders, ground truth, deep shadow maps, light space, ray casting
 // (docs/reference.md), error metrics, and the SDF view of a scene
 // (docs/sdf.md).
 #pragma once
 
+#include "penumbra/reference/deep_map.h"
 #include "penumbra/reference/geometry.h"
 #include "penumbra/reference/ground_truth.h"
 #include "penumbra/reference/light_space.h"
