@@ -67,9 +67,12 @@ DeepShadowMap::DeepShadowMap(int width, int height, std::vector<std::uint32_t> o
             "at most 2^32 - 1 vertices can be indexed by 32-bit offsets");
     require(offsets_.front() == 0 && offsets_.back() == depths_.size(), kOperation, "offsets",
             "must start at 0 and end at the vertex count " + std::to_string(depths_.size()));
-    for (std::size_t p = 0; p < pixels; ++p) {
+    // Every offset is checked before any pixel's vertices are read: with
+    // {0, 5, 2} over 2 vertices, pixel 0 would otherwise read 5.
+    for (std::size_t p = 0; p < pixels; ++p)
         require(offsets_[p] <= offsets_[p + 1], kOperation, "offsets",
                 "decrease at pixel " + std::to_string(p) + "; they must be non-decreasing");
+    for (std::size_t p = 0; p < pixels; ++p) {
         const int x = int(p % std::size_t(width)), y = int(p / std::size_t(width));
         require_visibility_function(this->depths(x, y), this->transmittances(x, y), x, y);
     }
