@@ -7,9 +7,11 @@
 // slope to [(lo_i - t_o)/(z_i - z_o), (hi_i - t_o)/(z_i - z_o)]; the running
 // intersection of those ranges is the set of segments that still fit. When
 // the next window empties it, the segment ends at the last input depth that
-// fitted, with the middle slope of the range (the seed does not fix which
-// slope; the middle leaves the next segment the most room either side), and
-// that end is the next origin. One pass, O(n).
+// fitted, with the slope of the range that lands nearest the input's own
+// value there (the seed does not fix which slope; the middle of the range,
+// the first choice, tilted every flat stretch between two steps and ended it
+// eps / 2 low: a systematic darkening), and that end is the next origin.
+// One pass, O(n).
 //
 // Why the band then holds at every depth, not only at the vertices: every
 // output depth is an input depth, so on each input segment both functions are
@@ -91,10 +93,12 @@ private:
     }
 
     // Ends the current segment at input vertex j (beyond the origin: a window
-    // that empties the range always follows one that bounded it).
+    // that empties the range always follows one that bounded it), on the
+    // fitting slope nearest the one that reaches t_j itself.
     void end_segment_at(std::size_t j)
     {
-        const double slope = 0.5 * (slope_lo_ + slope_hi_);
+        const double own = (double(t_[j]) - origin_t_) / (double(z_[j]) - origin_z_);
+        const double slope = std::clamp(own, slope_lo_, slope_hi_);
         const Window w = window(j);
         // Clamped against rounding only: in exact arithmetic the value is in
         // the window, and not above the origin since the slope is <= 0.

@@ -137,6 +137,27 @@ TEST(DsmCompression, AStaircaseOfLargeStepsKeepsEveryStep)
     }
 }
 
+// Flat stretches stay flat: two sheets (t 1 -> 0.6 at depth 1, -> 0.3 at
+// depth 2) sampled densely between them, as a generator's union of sample
+// depths gives them. The value just before the second step is the input's
+// own 0.6, not eps/2 lower (the middle of the slope range ended there).
+TEST(DsmCompression, FlatStretchesStayFlat)
+{
+    const float eps = 0.0625f;  // 0.25 / sqrt(16)
+    Function f{{0.5f, 1.0f, 1.0f}, {1.0f, 1.0f, 0.6f}};
+    for (int i = 1; i < 40; ++i) {
+        f.z.push_back(1.0f + float(i) / 40.0f);
+        f.t.push_back(0.6f);
+    }
+    f.z.insert(f.z.end(), {2.0f, 2.0f, 3.0f});
+    f.t.insert(f.t.end(), {0.6f, 0.3f, 0.3f});
+    const Function c = compressed(f, eps);
+    expect_valid_and_exact_at_ends(f, c);
+    expect_within_band(f, c, eps);
+    for (double d : {1.0, 1.25, 1.5, 1.75, 2.0})
+        EXPECT_NEAR(double(brute_visibility(c, d, d == 1.0 ? +1 : -1)), 0.6, 1e-6) << "at depth " << d;
+}
+
 // Steps of at most 2 eps may be smoothed into a slope: fewer vertices, same band.
 TEST(DsmCompression, AStaircaseOfSmallStepsIsSmoothed)
 {
