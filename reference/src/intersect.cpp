@@ -158,20 +158,35 @@ std::optional<Hit> intersect(const Ray& ray, const OrientedBox& box, double t_mi
 
 std::optional<Hit> intersect(const Ray& ray, const Capsule& capsule, double t_min, double t_max)
 {
-    // The capsule is the union of two spheres and a finite cylinder. From
-    // outside, the union's first crossing is the earliest of its parts' first
-    // crossings; from inside, any crossing is an occlusion, which is all a
-    // shadow ray asks.
-    std::optional<Hit> best = intersect(ray, Sphere{capsule.a, capsule.radius}, t_min, t_max);
-    if (best) t_max = best->t;
-    best = keep_nearest(best, intersect(ray, Sphere{capsule.b, capsule.radius}, t_min, t_max));
-    if (best) t_max = best->t;
+    // The capsule is the union of two spheres and a finite cylinder, the
+    // points within `radius` of the segment [a, b]. Its surface is where that
+    // distance equals the radius. The earliest crossing of a part is one of
+    // the union's unless it lies inside another part (a cap's inner half, from
+    // a ray that starts inside): then the search goes on past it. Layered
+    // depth maps (Pismo) need every true crossing, not only the first.
     const Vec3 axis = capsule.b - capsule.a;
     const double len = length(axis);
-    if (len > 0)
-        best = keep_nearest(best, intersect_cylinder_side(ray, capsule.a, axis / len, len, capsule.radius,
-                                                          t_min, t_max));
-    return best;
+    const auto earliest_part = [&](double from) {
+        std::optional<Hit> best = intersect(ray, Sphere{capsule.a, capsule.radius}, from, t_max);
+        best = keep_nearest(best, intersect(ray, Sphere{capsule.b, capsule.radius}, from, best ? best->t : t_max));
+        if (len > 0)
+            best = keep_nearest(best, intersect_cylinder_side(ray, capsule.a, axis / len, len, capsule.radius, from,
+                                                              best ? best->t : t_max));
+        return best;
+    };
+    const auto on_surface = [&](const Hit& hit) {
+        const Vec3 p = ray.at(hit.t);
+        const double s = len > 0 ? std::clamp(dot(p - capsule.a, axis) / (len * len), 0.0, 1.0) : 0.0;
+        return length(p - (capsule.a + axis * s)) >= capsule.radius * (1 - 1e-9);
+    };
+    // A line crosses the three parts' surfaces at most six times.
+    double from = t_min;
+    for (int crossing = 0; crossing < 6; ++crossing) {
+        const std::optional<Hit> hit = earliest_part(from);
+        if (!hit || on_surface(*hit)) return hit;
+        from = hit->t;
+    }
+    return std::nullopt;
 }
 
 std::optional<Chord> chord(const Ray& ray, const Sphere& sphere)

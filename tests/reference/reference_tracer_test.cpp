@@ -68,6 +68,22 @@ TEST(ReferenceTracer, CapsuleSideAndCaps)
     EXPECT_FALSE(intersect(Ray{{-3, 2.51, 0}, {1, 0, 0}}, capsule, 0, 100));
 }
 
+TEST(ReferenceTracer, CapsuleFromInsideCrossesOnlyItsSurface)
+{
+    // From the middle along the axis, the upper cap's sphere is entered at
+    // y = 1.5, inside the cylinder: not a crossing. The surface is at 2.5.
+    const Capsule capsule{{0, 0, 0}, {0, 2, 0}, 0.5};
+    const auto exit = intersect(Ray{{0, 1, 0}, {0, 1, 0}}, capsule, 0, 100);
+    ASSERT_TRUE(exit);
+    EXPECT_NEAR(exit->t, 1.5, kTight);
+    expect_near(exit->normal, {0, 1, 0}, kTight);
+    // Slantwise from inside: the exit is where the distance to the axis segment is the radius.
+    const Ray slant{{0.1, 0.2, 0}, normalize(Vec3{0.3, 1, 0.2})};
+    const auto out = intersect(slant, capsule, 0, 100);
+    ASSERT_TRUE(out);
+    EXPECT_NEAR(signed_distance(slant.at(out->t), capsule), 0, 1e-12);
+}
+
 TEST(ReferenceTracer, PlaneIsTheHalfSpaceBelow)
 {
     const Plane plane{{0, 1, 0}, {0, 1, 0}};
