@@ -1,0 +1,91 @@
+// The maps of Pismo (Neulander, "Pismo: Parallax-Interpolated Shadow Map
+// Occlusion"; notes in ../shared/seeds/002): the area light as a triangle
+// mesh, one perspective layered depth map per mesh vertex, every camera
+// fixated on one point central to the casting geometry. docs/pismo.md states
+// the choices.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "penumbra/layered_depth_map.h"
+#include "penumbra/reference/scene.h"
+#include "penumbra/reference/tracer.h"
+
+namespace penumbra::reference {
+
+// A planar triangle mesh of the light, in world space.
+//   Rectangle: level 0 is its two triangles (4 vertices, corners).
+//   Disk: level 0 is a fan of 6 triangles about the centre (7 vertices: the
+//         centre and a hexagon on the rim).
+// Each further level splits every triangle into four at its edges' midpoints;
+// a midpoint on the disk's rim is moved out onto the circle, so the mesh
+// converges to the disk (a rectangle's mesh is the rectangle at every level).
+// Vertices shared by triangles are stored once. A rectangle at level L has
+// (2^L + 1)^2 vertices: 4, 9, 25, 81, 289, 1089 at levels 0 to 5.
+struct LightMesh {
+    std::vector<Vec3> vertices;
+    std::vector<std::array<int, 3>> triangles;  // indices into vertices
+
+    double triangle_area(int triangle) const;
+    double area() const;
+    // Each vertex's share of the mesh's area (a third of each triangle it
+    // belongs to, over the whole): the weights of the averaged hard shadows.
+    std::vector<double> vertex_weights() const;
+};
+
+inline constexpr int kMaxLightLevel = 5;
+
+// Error(InvalidArgument, "light_mesh") for a point light or a level outside
+// [0, kMaxLightLevel].
+LightMesh light_mesh(const AreaLight& light, int level);
+
+// What the maps hold: the scene's surfaces without the planes whose solid
+// (the half-space behind the plane) holds no point of the light. Such a
+// plane cannot occlude any segment from a point outside it to the light (both
+// ends lie in the complementary half-space, which is convex), so it is a
+// receiver only; leaving it out keeps empty the pixels that see no caster,
+// which the bled maps fill. scene_surfaces order otherwise.
+std::vector<Primitive> pismo_casters(const Scene& scene);
+
+// The point every map camera looks at: the centre of the bounding box of the
+// bounded casters (spheres, boxes, capsules, hair), or, without any, the
+// point on the light's axis halfway through its camera's depth range.
+Vec3 pismo_fixation_point(const Scene& scene);
+
+// The camera of the map at `vertex`: at the vertex, looking at `fixation`,
+// rows "down" against the light's `up`. Its field of view is the narrowest
+// square one (times 1.02) that holds the scene's light frustum from the
+// nearest depth of the casters' bounding box to the far plane: the frustum
+// slab is the convex hull of its eight corners, so holding the corners holds
+// it all, every receiver the light camera sees and every caster between them
+// and the light. Error(InvalidArgument) when a corner lies behind the vertex.
+MapCamera pismo_vertex_camera(const Scene& scene, Vec3 vertex, Vec3 fixation);
+
+struct LayeredMapOptions {
+    int size = 512;        // each map is size x size, in [1, 8192]
+    int max_layers = 8;    // per pixel, in [1, 64]: the nearest this many surfaces are kept
+    // Proximity pruning: a surface within prune * d of the last kept depth d
+    // (the two faces of a strand thinner than that, a box's coincident faces)
+    // adds no layer. In [0, 0.1].
+    double prune = 1e-3;
+};
+
+// The layered depth map of `camera` over the casters (pismo_casters of a
+// validated scene): per pixel, the ray through its centre and the radial
+// distance of every surface crossing (entering and leaving each solid), pruned
+// and capped as above. Rows in parallel; the result does not depend on the
+// thread count. Error(InvalidArgument) naming the option out of range.
+LayeredDepthMap render_layered_depth_map(const PreparedScene& casters, const MapCamera& camera,
+                                         const LayeredMapOptions& options);
+
+struct PismoMaps {
+    LightMesh mesh;
+    Vec3 fixation;
+    std::vector<LayeredDepthMap> maps;  // one per mesh vertex, in vertex order
+};
+
+// The mesh at `level` and a layered map from each of its vertices.
+PismoMaps render_pismo_maps(const Scene& scene, int level, const LayeredMapOptions& options);
+
+}  // namespace penumbra::reference
