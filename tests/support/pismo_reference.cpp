@@ -1,0 +1,128 @@
+// Pismo's shadow-ray test in float64 (support/pismo_reference.h).
+#include "support/pismo_reference.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <random>
+
+namespace penumbra::testing {
+namespace {
+
+using reference::Vec3;
+
+Vec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+// Where p lands in a map: its pixel, its radial depth, and the bias there.
+struct Landing {
+    int x = 0, y = 0;
+    double depth = 0, bias = 0;
+};
+
+std::optional<Landing> land(const LayeredDepthMap& map, Vec3 p, double bias_texels)
+{
+    const MapCamera& c = map.camera();
+    const Vec3 local = p - vec(c.position);
+    const double d = dot(local, vec(c.forward));
+    if (!(d > 0)) return std::nullopt;
+    const double u = 0.5 + dot(local, vec(c.right)) / (2 * d * c.tan_half_fov);
+    const double v = 0.5 + dot(local, vec(c.down)) / (2 * d * c.tan_half_fov);
+    const double x = std::floor(u * map.width()), y = std::floor(v * map.height());
+    if (!(x >= 0 && x < map.width() && y >= 0 && y < map.height())) return std::nullopt;
+    const double depth = length(local);
+    const double texel = 2 * c.tan_half_fov * depth / map.width();
+    return Landing{int(x), int(y), depth, bias_texels * texel};
+}
+
+// Whether a layer of `map` at q's pixel lies nearer than p's depth (minus the bias).
+bool occludes(const LayeredDepthMap& map, Vec3 q, Vec3 p, double bias_texels)
+{
+    const std::optional<Landing> at_q = land(map, q, bias_texels);
+    const std::optional<Landing> at_p = land(map, p, bias_texels);
+    if (!at_q || !at_p) return false;  // outside the map: no caster was seen there
+    const auto layers = map.layers(at_q->x, at_q->y);
+    return !layers.empty() && double(layers.front()) < at_p->depth - at_p->bias;
+}
+
+// The first estimate of one map: the depth of the farthest bled layer nearer
+// than p (the occluder nearest p), if any.
+std::optional<double> nearest_occluder_depth(const LayeredDepthMap& bled, Vec3 p, double bias_texels)
+{
+    const std::optional<Landing> at = land(bled, p, bias_texels);
+    if (!at) return std::nullopt;
+    std::optional<double> nearest;
+    for (float layer : bled.layers(at->x, at->y))
+        if (double(layer) < at->depth - at->bias) nearest = double(layer);
+    return nearest;
+}
+
+// A point of the unit square to barycentric weights, area-preserving.
+std::array<double, 3> barycentric(double a, double b)
+{
+    const double r = std::sqrt(a);
+    return {1 - r, r * (1 - b), r * b};
+}
+
+}  // namespace
+
+PismoReferenceMaps PismoReferenceMaps::layered(const reference::PismoMaps& maps)
+{
+    PismoReferenceMaps out{&maps, maps.maps, {}};
+    for (const LayeredDepthMap& map : maps.maps) out.bled.push_back(bleed_empty_pixels(map));
+    return out;
+}
+
+PismoReferenceMaps PismoReferenceMaps::maximum_depth(const reference::PismoMaps& maps)
+{
+    PismoReferenceMaps out{&maps, {}, {}};
+    for (const LayeredDepthMap& map : maps.maps) {
+        out.test.push_back(maximum_depth_map(map));
+        out.bled.push_back(bleed_empty_pixels(out.test.back()));
+    }
+    return out;
+}
+
+double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o, std::uint64_t stream)
+{
+    const reference::LightMesh& mesh = maps.source->mesh;
+    std::vector<std::optional<double>> estimate(mesh.vertices.size());
+    for (std::size_t j = 0; j < estimate.size(); ++j) estimate[j] = nearest_occluder_depth(maps.bled[j], p, o.bias_texels);
+    std::mt19937_64 random(o.seed * 0x9e3779b97f4a7c15ull ^ stream);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const double total_area = mesh.area();
+    double occlusion = 0;
+    for (int t = 0; t < int(mesh.triangles.size()); ++t) {
+        const auto& corners = mesh.triangles[std::size_t(t)];
+        const double share = mesh.triangle_area(t) / total_area;
+        const int n = std::max(1, int(std::lround(std::sqrt(o.rays * share))));
+        for (int sj = 0; sj < n; ++sj)
+            for (int si = 0; si < n; ++si) {
+                const auto w = barycentric((si + unit(random)) / n, (sj + unit(random)) / n);
+                Vec3 light{};
+                for (int k = 0; k < 3; ++k) light = light + mesh.vertices[std::size_t(corners[k])] * w[k];
+                double distance = 0, weight = 0;
+                for (int k = 0; k < 3; ++k)
+                    if (const auto& d = estimate[std::size_t(corners[k])]) {
+                        distance += w[k] * *d;
+                        weight += w[k];
+                    }
+                const Vec3 to_p = p - light;
+                const Vec3 occluder = weight > 0 ? light + to_p * (distance / weight / length(to_p)) : p;
+                double blocked = 0;
+                for (int k = 0; k < 3; ++k)
+                    blocked += w[k] * occludes(maps.test[std::size_t(corners[k])], occluder, p, o.bias_texels);
+                occlusion += share * blocked / (n * n);
+            }
+    }
+    return std::clamp(1 - occlusion, 0.0, 1.0);
+}
+
+double averaged_hard_shadows(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o)
+{
+    const std::vector<double> weights = maps.source->mesh.vertex_weights();
+    double occlusion = 0;
+    for (std::size_t j = 0; j < weights.size(); ++j) occlusion += weights[j] * occludes(maps.test[j], p, p, o.bias_texels);
+    return std::clamp(1 - occlusion, 0.0, 1.0);
+}
+
+}  // namespace penumbra::testing

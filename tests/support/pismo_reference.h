@@ -1,0 +1,40 @@
+// Pismo's shadow-ray test in float64, written from the notes
+// (../shared/seeds/002; docs/pismo.md "The shadow-ray test"): the reference
+// the kernel description will be checked against, and the classical
+// alternative at the same maps, the area-weighted average of hard shadows.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "penumbra/layered_depth_map.h"
+#include "penumbra/reference/pismo_maps.h"
+
+namespace penumbra::testing {
+
+struct PismoReferenceOptions {
+    int rays = 64;  // about this many per shading point, stratified per triangle by area
+    // A layer occludes a point when it is nearer than the point's depth minus
+    // bias_texels times the footprint of one texel at that depth.
+    double bias_texels = 2;
+    std::uint64_t seed = 1;
+};
+
+// The maps Pismo reads: the layered maps (or their maximum-depth variant) and
+// the bled copies of the same for the first estimate.
+struct PismoReferenceMaps {
+    const reference::PismoMaps* source = nullptr;
+    std::vector<LayeredDepthMap> test, bled;
+    static PismoReferenceMaps layered(const reference::PismoMaps& maps);
+    static PismoReferenceMaps maximum_depth(const reference::PismoMaps& maps);
+};
+
+// The light's visible fraction at point p, in [0, 1]; `stream` names its ray samples.
+double pismo_visibility(const PismoReferenceMaps& maps, reference::Vec3 p, const PismoReferenceOptions& options,
+                        std::uint64_t stream);
+
+// The same maps as hard shadows, each weighted by its vertex's share of the
+// light's area (LightMesh::vertex_weights).
+double averaged_hard_shadows(const PismoReferenceMaps& maps, reference::Vec3 p, const PismoReferenceOptions& options);
+
+}  // namespace penumbra::testing
