@@ -175,6 +175,15 @@ Image Method::run(Context& context, const Image& map, const Image& receivers, co
     return detail::visibility_output(receivers, [&](Image& out) { shade(context, prepared, receivers, settings, out); });
 }
 
+void Method::warm_up(Context& context, const MethodSettings& settings) const
+{
+    if (context.backend() != Backend::OpenCL) return;
+    Image map(1, 1, 1), receivers(1, 1, int(receiver_channels(settings).size()));
+    map.fill(0, 0.5f);
+    for (int c = 0; c < receivers.channels(); ++c) receivers.fill(c, c < 3 ? 0.5f : 0.0f);  // u, v, z; dzdu, dzdv
+    (void)run(context, map, receivers, settings);
+}
+
 const std::vector<Method>& methods()
 {
     static const std::vector<Method> table = {
