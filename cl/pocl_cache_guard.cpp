@@ -102,6 +102,15 @@ void clear_folder(const fs::path& pocl_dir)
     fs::permissions(pocl_dir, fs::perms::owner_all, error);
 }
 
+// True when `manifest` already holds `text`.
+bool unchanged(const fs::path& manifest, const std::string& text)
+{
+    std::ifstream in(manifest, std::ios::binary);
+    std::string held(text.size() + 1, '\0');  // one byte more: a longer file differs
+    in.read(held.data(), std::streamsize(held.size()));
+    return in.gcount() == std::streamsize(text.size()) && held.compare(0, text.size(), text) == 0;
+}
+
 // The entries the last check verified, so that recording need not hash them again.
 std::mutex g_mutex;
 Manifest g_verified;
@@ -162,7 +171,7 @@ void record_pocl_cache(const fs::path& pocl_dir, const fs::path& manifest) noexc
             else if (!hash_file(it->path(), entry.hash)) continue;
             text << entry.size << ' ' << std::hex << entry.hash << std::dec << ' ' << relative.string() << '\n';
         }
-        if (error) return;
+        if (error || unchanged(manifest, text.str())) return;  // a warm run: nothing to write
         fs::path temporary = manifest;
         temporary += ".tmp-" + std::to_string(::getpid());
         {

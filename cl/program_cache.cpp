@@ -135,6 +135,7 @@ void prepare_driver_cache_environment() noexcept
                 unlock_driver_cache(fd);
                 g_guarded = true;
                 std::atexit(record_pocl_cache_at_exit);
+                std::at_quick_exit(record_pocl_cache_at_exit);  // the CLI ends with quick_exit (host/cli/main.cpp)
             }
             ::setenv("POCL_CACHE_DIR", dir.c_str(), /*overwrite=*/0);
         } catch (...) {

@@ -20,6 +20,7 @@ set(PENUMBRA_KERNEL_FILES
   kernels/encoded_table.h
   kernels/evsm.h
   kernels/msm.h
+  kernels/receiver_slope.h
   kernels/msm_soft.h
   kernels/depth_bias.h
   kernels/pcf.h
@@ -58,8 +59,8 @@ set(PENUMBRA_CL_FAMILY_FILES_bilateral kernels/bilateral.h)
 set(PENUMBRA_CL_FAMILY_FILES_sdf kernels/sdf.h)
 set(PENUMBRA_CL_FAMILY_FILES_moments
   kernels/moment_table.h kernels/chebyshev.h kernels/box_window.h kernels/vsm.h kernels/vssm.h kernels/moment_quantize.h
-  kernels/exponential_warp.h kernels/encoded_table.h kernels/evsm.h kernels/msm.h kernels/msm_soft.h)
-set(PENUMBRA_CL_FAMILY_FILES_pcf kernels/depth_bias.h kernels/pcf.h kernels/pcf_gauss.h kernels/pcf_disc.h
+  kernels/exponential_warp.h kernels/encoded_table.h kernels/evsm.h kernels/msm.h kernels/receiver_slope.h kernels/msm_soft.h)
+set(PENUMBRA_CL_FAMILY_FILES_pcf kernels/receiver_slope.h kernels/depth_bias.h kernels/pcf.h kernels/pcf_gauss.h kernels/pcf_disc.h
     kernels/hammersley.h kernels/pcss.h kernels/burley.h)
 
 set(_table ${CMAKE_CURRENT_SOURCE_DIR}/kernels/kernel_table.h)

@@ -27,14 +27,15 @@
  *                               beta = clamp(depth_bias - (dz/du du + dz/dv dv), low, high).
  *
  * The derivatives (planes PN_PCF_PLANE_DZDU, _DZDV of the receivers, depth per
- * unit of texture coordinate) come from the host: finite differences on the
+ * unit of texture coordinate, read by kernels/receiver_slope.h) come from the host: finite differences on the
  * receivers' grid or channels of the receivers' file (host/src/receiver_plane.cpp
  * states the discontinuity test). Where they cross a depth discontinuity the
  * plane flag (PN_PCF_PLANE_OK) is 0 and the tap falls back to beta = depth_bias,
  * as Toy Story 3 falls back to a static bias where derivatives cross cascades.
  *
  * Non-finite receiver values flag the row (bad_rows) and are read as 0, so
- * that no lane forms a NaN or an out-of-range index; the host reports the row.
+ * that no lane forms a NaN or an out-of-range index (load_checked_plane,
+ * kernels/receiver_slope.h); the host reports the row.
  */
 #ifndef PENUMBRA_DEPTH_BIAS_H
 #define PENUMBRA_DEPTH_BIAS_H
@@ -47,34 +48,21 @@ typedef struct {
     pn_mask plane;          /* receiver-plane mode: the derivatives hold here */
 } PcfReceiver;
 
-/* A receiver plane read as 0 where it is not finite (and the row flagged). */
-PN_FN pn_float pcf_checked_plane(PN_GLOBAL const float* receivers, pn_dims d, int c, int x, int y,
-                                 PN_GLOBAL int* bad_rows)
-{
-    const pn_float value = pn_load(PN_PLANE(receivers, d, c), d, x, y);
-    const pn_mask finite = pn_finite(value);
-    pn_flag_any(bad_rows, y, pn_not(finite));
-    return pn_select(finite, value, 0.0f);
-}
-
 /* The receivers of the strip at (x, y) with the bias each tap will need;
  * `map` is the shadow map's geometry (W, H). */
 PN_FN PcfReceiver pcf_load_receiver(PN_GLOBAL const float* receivers, pn_dims d, pn_dims map, PcfBias b, int x,
                                     int y, PN_GLOBAL int* bad_rows)
 {
     PcfReceiver r;
-    r.u = pn_clamp(pcf_checked_plane(receivers, d, 0, x, y, bad_rows), 0.0f, 1.0f);
-    r.v = pn_clamp(pcf_checked_plane(receivers, d, 1, x, y, bad_rows), 0.0f, 1.0f);
-    r.z = pcf_checked_plane(receivers, d, 2, x, y, bad_rows);
-    r.dzdu = 0.0f;
-    r.dzdv = 0.0f;
-    r.plane = r.z != r.z; /* all false */
+    r.u = pn_clamp(load_checked_plane(receivers, d, 0, x, y, bad_rows), 0.0f, 1.0f);
+    r.v = pn_clamp(load_checked_plane(receivers, d, 1, x, y, bad_rows), 0.0f, 1.0f);
+    r.z = load_checked_plane(receivers, d, 2, x, y, bad_rows);
     r.reference = r.z - b.depth_bias;
-    if (b.mode == PN_BIAS_CONSTANT) return r;
-
-    r.dzdu = pcf_checked_plane(receivers, d, PN_PCF_PLANE_DZDU, x, y, bad_rows);
-    r.dzdv = pcf_checked_plane(receivers, d, PN_PCF_PLANE_DZDV, x, y, bad_rows);
-    r.plane = pcf_checked_plane(receivers, d, PN_PCF_PLANE_OK, x, y, bad_rows) > 0.5f;
+    const ReceiverSlope s = b.mode == PN_BIAS_CONSTANT ? no_receiver_slope()
+                                                       : load_receiver_slope(receivers, d, x, y, bad_rows);
+    r.dzdu = s.dzdu;
+    r.dzdv = s.dzdv;
+    r.plane = s.holds;
     if (b.mode == PN_BIAS_SLOPE) {
         const pn_float step = pn_abs(r.dzdu) / (float)map.width + pn_abs(r.dzdv) / (float)map.height;
         const pn_float beta = pn_clamp(b.depth_bias + b.slope_scale * step, b.low, b.high);

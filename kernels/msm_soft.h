@@ -41,7 +41,8 @@
  * the window, and removing them measured worse (contact: 95.4% of lit
  * receivers above 0.98 against 99.8% with the filter step's bias alone,
  * docs/moments.md). Receivers planes PN_PCF_PLANE_DZDU/_DZDV/_OK hold the
- * plane (host: pcf_receivers); where the flag is 0 the window keeps z_f.
+ * plane (kernels/receiver_slope.h; host: pcf_receivers); where the flag is 0
+ * the window keeps z_f.
  * Output: one plane of visibility in [0, 1]; never NaN.
  */
 #ifndef PENUMBRA_MSM_SOFT_H
@@ -166,34 +167,13 @@ PN_FN pn_float msm_soft_visibility(WindowMoments filter_moments, pn_double z_f, 
     return pn_select(lit, 1.0f, visibility);
 }
 
-/* The receiver's plane, or a flat one when the plane bias is off (the
- * receivers then hold u, v, z only). Non-finite values flag the row. */
-typedef struct {
-    pn_float dzdu, dzdv;
-    pn_mask holds;
-} ReceiverSlope;
-
-PN_FN pn_float msm_soft_slope_plane(PN_GLOBAL const float* receivers, const MomentParams p, int c, int x, int y,
-                                    PN_GLOBAL int* bad_rows)
-{
-    const pn_float value = pn_load(PN_PLANE(receivers, p.receivers, c), p.receivers, x, y);
-    const pn_mask finite = pn_finite(value);
-    pn_flag_any(bad_rows, y, pn_not(finite));
-    return pn_select(finite, value, 0.0f);
-}
-
+/* The receiver's plane (kernels/receiver_slope.h), or none when the plane
+ * bias is off (the receivers then hold u, v, z only). */
 PN_FN ReceiverSlope msm_soft_load_slope(PN_GLOBAL const float* receivers, const MomentParams p, int x, int y,
                                         PN_GLOBAL int* bad_rows)
 {
-    ReceiverSlope s;
-    s.dzdu = 0.0f;
-    s.dzdv = 0.0f;
-    s.holds = s.dzdu != s.dzdu; /* all false */
-    if (p.plane_bias <= 0.0f) return s;
-    s.dzdu = msm_soft_slope_plane(receivers, p, PN_PCF_PLANE_DZDU, x, y, bad_rows);
-    s.dzdv = msm_soft_slope_plane(receivers, p, PN_PCF_PLANE_DZDV, x, y, bad_rows);
-    s.holds = msm_soft_slope_plane(receivers, p, PN_PCF_PLANE_OK, x, y, bad_rows) > 0.5f;
-    return s;
+    if (p.plane_bias <= 0.0f) return no_receiver_slope();
+    return load_receiver_slope(receivers, p.receivers, x, y, bad_rows);
 }
 
 /* z_f lowered by the receiver plane's largest drop inside window f, capped. */

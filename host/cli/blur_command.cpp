@@ -5,6 +5,7 @@
 // Output is written atomically: a failed run leaves no partial file and an
 // existing OUT.exr untouched.
 #include <cmath>
+#include <future>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -133,10 +134,12 @@ int blur_command(const std::vector<std::string>& argv)
         throw UsageError{std::string(e.what())};
     }
 
+    // The backend starts while the inputs are read (OpenCL: tens of ms; docs/opencl_startup.md).
+    std::future<Context> starting = start_context(ContextOptions{backend, {}});
     std::vector<std::string> names;
     const Image mask = read_mask(in_path, names);
     const Image guide = read_guide(guide_path, mask, in_path);
-    Context context(ContextOptions{backend, {}});
+    Context context = starting.get();
     for (const std::string& warning : context.warnings()) std::cerr << "penumbra blur: warning: " << warning << "\n";
     const Image blurred = cross_bilateral(context, mask, guide, options);
     write_exr(out_path, blurred, names);

@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -192,6 +193,8 @@ int sdf_shade_command(const std::vector<std::string>& argv)
     const SdfEstimate estimate = parse_estimate(args.text("--estimate", "inner"));
     const Backend backend = backend_from(args);
 
+    // The backend starts while the scene and the receivers are read (OpenCL: tens of ms; docs/opencl_startup.md).
+    std::future<Context> starting = start_context(ContextOptions{backend, {}});
     std::optional<reference::Scene> scene;
     if (args.get("--scene")) scene = resolve_scene(*args.get("--scene"));
     const SdfOptions options = options_from(args, scene, estimate);
@@ -206,7 +209,7 @@ int sdf_shade_command(const std::vector<std::string>& argv)
         normals = read_channels(rx_path, {"N.x", "N.y", "N.z"});
     }
 
-    Context context(ContextOptions{backend, {}});
+    Context context = starting.get();
     for (const std::string& warning : context.warnings()) std::cerr << "penumbra sdf-shade: warning: " << warning << "\n";
     Image out(positions.width(), positions.height(), args.flag("--steps") ? 2 : 1);
     const Image* n = normals ? &*normals : nullptr;

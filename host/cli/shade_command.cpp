@@ -8,7 +8,9 @@
 // Methods, their options and every check of an option's value are the
 // library's method table (penumbra/methods.h); this file reads the files,
 // runs the entry and names, for an error, the flag or file at fault.
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <future>
 #include <iostream>
 #include <set>
@@ -81,6 +83,16 @@ struct ShadeFiles {
                                                   : "; NaN and infinite values are not accepted"));
 }
 
+// Sets `flag` when the scope is left by an exception.
+struct SetOnUnwind {
+    std::atomic<bool>& flag;
+    const int uncaught = std::uncaught_exceptions();
+    ~SetOnUnwind()
+    {
+        if (std::uncaught_exceptions() > uncaught) flag = true;
+    }
+};
+
 Image read_input(const std::string& path, const std::vector<std::string>& channels, const char* what)
 {
     Image image = read_exr(path, channels, exr_limits());
@@ -110,8 +122,15 @@ int shade_command(const std::vector<std::string>& argv)
     try {
         const Method& method = find_method(method_name);
         const MethodSettings settings = parse_method_settings(method, given_options(args));
-        // The backend starts while the inputs are read (OpenCL: tens of ms).
-        std::future<Context> starting = start_context(ContextOptions{backend, {}});
+        // The backend starts, and loads the method's programs, while the inputs are read (OpenCL: tens of ms).
+        // An input that fails to read skips the warm-up, so that its error does not wait for program
+        // builds (seconds on a cold cache): the future's destructor waits for the thread.
+        std::atomic<bool> inputs_failed{false};
+        const auto warm_up = [&method, settings, &inputs_failed](Context& c) {
+            if (!inputs_failed) method.warm_up(c, settings);
+        };
+        std::future<Context> starting = start_context(ContextOptions{backend, {}}, warm_up);
+        const SetOnUnwind on_unwind{inputs_failed};
         const Image map = read_input(files.shadow_map, {"Z"}, "shadow map");
         const Image receivers = read_input(files.receivers, receiver_channels(settings), "receivers image");
         Context context = starting.get();

@@ -1,5 +1,8 @@
 #include "penumbra/context.h"
 
+#include <tbb/cache_aligned_allocator.h>
+#include <tbb/parallel_for.h>
+
 #include <cstdlib>
 #include <string>
 
@@ -124,12 +127,39 @@ Context::Context(ContextOptions options)
     }
 }
 
-std::future<Context> start_context(ContextOptions options)
+namespace {
+
+// TBB loads libtbbmalloc and libirml with dlopen on its first allocation and
+// its first parallel loop, and glibc runs one dlopen at a time. Started
+// after PoCL's own dlopen (libLLVM and libclang-cpp relocated: 20 ms idle,
+// 50 to 90 ms under load), those waited for it: a warm `shade` had its input
+// reading blocked in read_exr -> Image -> tbb::detail::r1::allocate ->
+// dlopen until PoCL's had finished (perf record -e sched:sched_switch,
+// docs/opencl_startup.md). Taking them first keeps the reads beside it.
+void load_tbb_runtime()
+{
+    tbb::cache_aligned_allocator<char> allocator;
+    allocator.deallocate(allocator.allocate(1), 1);
+    tbb::parallel_for(0, 2, [](int) {});
+}
+
+}  // namespace
+
+std::future<Context> start_context(ContextOptions options, std::function<void(Context&)> prepare)
 {
 #if PENUMBRA_OPENCL
     cl_backend::prepare_driver_cache_environment();  // sets POCL_CACHE_DIR: before the thread starts
 #endif
-    return std::async(std::launch::async, [options = std::move(options)] { return Context(options); });
+    load_tbb_runtime();
+    return std::async(std::launch::async, [options = std::move(options), prepare = std::move(prepare)] {
+        Context context(options);
+        try {
+            if (prepare) prepare(context);
+        } catch (const Error&) {
+            // Only a head start: the real run reports its own errors.
+        }
+        return context;
+    });
 }
 
 Context::~Context() = default;

@@ -222,8 +222,8 @@ const std::vector<MethodOption>& method_options()
         {"slope-scale", "S", "slope bias per unit of the receiver's depth change across one texel", "1",
          &kSlopeScaleRange, false, set_float<&S::slope_scale, kSlopeScaleRange>},
         {"bias-derivatives", "D",
-         "dz/du, dz/dv of slope and receiver-plane: differences (receivers' neighbours) or channels (RX.exr dzdu, "
-         "dzdv)",
+         "dz/du, dz/dv of slope, receiver-plane and msm-soft's plane-bias: differences (receivers' neighbours) or "
+         "channels (RX.exr dzdu, dzdv)",
          "differences", nullptr, false, set_derivatives},
         {"grid", "N", "taps per side of the Gaussian grid (4: Toy Story 3's 4x4)", "4", &kPcfGridRange, false,
          set_int<&S::grid, kPcfGridRange>},

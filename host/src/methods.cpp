@@ -69,7 +69,8 @@ void shade_msm(Context& context, const PreparedMap& prepared, const Image& recei
 void shade_msm_soft(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                     Image& out)
 {
-    const MsmSoftOptions options{s.light_size, s.moment_bias, s.depth_bias, s.plane_bias, s.plane_bias_max};
+    const MsmSoftOptions options{s.light_size, s.moment_bias, s.depth_bias,
+                                 s.plane_bias, s.plane_bias_max, s.derivatives};
     msm_soft(context, prepared.table<MsmTable>(), receivers, options, out);
 }
 
@@ -157,7 +158,11 @@ void shade_burley(Context& context, const PreparedMap& prepared, const Image& re
 
 std::vector<std::string> receiver_channels(const MethodSettings& s)
 {
-    if (s.bias_mode != BiasMode::Constant && s.derivatives == DerivativeSource::Channels)
+    // The receiver's plane is read by the family's slope and receiver-plane
+    // biases, and by msm-soft's plane bias; each option is left at its
+    // default (off) by the methods that do not read it.
+    const bool reads_plane = s.bias_mode != BiasMode::Constant || s.plane_bias > 0.0f;
+    if (reads_plane && s.derivatives == DerivativeSource::Channels)
         return {"u", "v", "z", "dzdu", "dzdv"};
     return {"u", "v", "z"};
 }
@@ -170,6 +175,15 @@ Image Method::run(Context& context, const Image& map, const Image& receivers, co
     return detail::visibility_output(receivers, [&](Image& out) { shade(context, prepared, receivers, settings, out); });
 }
 
+void Method::warm_up(Context& context, const MethodSettings& settings) const
+{
+    if (context.backend() != Backend::OpenCL) return;
+    Image map(1, 1, 1), receivers(1, 1, int(receiver_channels(settings).size()));
+    map.fill(0, 0.5f);
+    for (int c = 0; c < receivers.channels(); ++c) receivers.fill(c, c < 3 ? 0.5f : 0.0f);  // u, v, z; dzdu, dzdv
+    (void)run(context, map, receivers, settings);
+}
+
 const std::vector<Method>& methods()
 {
     static const std::vector<Method> table = {
@@ -180,8 +194,8 @@ const std::vector<Method>& methods()
         {"msm", "moment shadow maps: four moments, Hamburger bound (Peters & Klein 2015)",
          {"radius", "moment-bias", "depth-bias", "quantize"}, prepare_msm, shade_msm},
         {"msm-soft", "moment soft shadows: blocker search on four moments (Peters et al. 2016)",
-         {"light-size", "moment-bias", "depth-bias", "plane-bias", "plane-bias-max", "quantize"}, prepare_msm_table,
-         shade_msm_soft},
+         {"light-size", "moment-bias", "depth-bias", "plane-bias", "plane-bias-max", "bias-derivatives", "quantize"},
+         prepare_msm_table, shade_msm_soft},
         {"evsm2", "exponential variance shadow maps, positive warp (Lauritzen & McCool 2008)",
          {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, prepare_evsm<2>, shade_evsm<2>},
         {"evsm4", "exponential variance shadow maps, both warps (Lauritzen & McCool 2008)",

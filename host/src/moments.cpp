@@ -93,11 +93,14 @@ float checked_exponent(const std::string& op, std::optional<float> value, Quanti
 
 // ---- lookups -----------------------------------------------------------------
 
-void check_receivers(const std::string& op, const Image& receivers, const Image& out)
+// `slopes`: the receivers also hold dzdu, dzdv (msm_soft's plane from channels).
+void check_receivers(const std::string& op, const Image& receivers, const Image& out, bool slopes = false)
 {
     require(!receivers.empty(), op, "receivers", "the receivers image is empty (0 pixels)");
-    require(receivers.channels() == 3, op,
-            "receivers must have 3 channels (u, v, z), got " + std::to_string(receivers.channels()));
+    const int channels = slopes ? 5 : 3;
+    const char* names = slopes ? " channels (u, v, z, dzdu, dzdv), got " : " channels (u, v, z), got ";
+    require(receivers.channels() == channels, op,
+            "receivers must have " + std::to_string(channels) + names + std::to_string(receivers.channels()));
     require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), op,
             "the output must be a 1-channel image of the receivers' size (" + std::to_string(receivers.width()) +
                 "x" + std::to_string(receivers.height()) + ")");
@@ -272,10 +275,11 @@ namespace {
 
 // The receivers with the plane msm_soft's plane bias reads (planes 3-5:
 // dz/du, dz/dv, the flag), made as the percentage-closer family makes them.
-Image receiver_planes(const std::string& op, const Image& receivers)
+Image receiver_planes(const std::string& op, const Image& receivers, DerivativeSource derivatives)
 {
     DepthBias plane;
     plane.mode = BiasMode::ReceiverPlane;
+    plane.derivatives = derivatives;
     return pcf_receivers(receivers, plane, op);
 }
 
@@ -286,11 +290,12 @@ void msm_soft(Context& context, const MsmTable& table, const Image& receivers, c
 {
     const std::string op = "msm_soft";
     check_table(op, table.sums, 4);
-    check_receivers(op, receivers, out);
+    const bool slope_channels = options.plane_bias > 0.0f && options.derivatives == DerivativeSource::Channels;
+    check_receivers(op, receivers, out, slope_channels);
     const int max_radius = detail::checked_search_radius(op, options.light_size, table.sums);
     check(kPlaneBiasRange, options.plane_bias, op);
     check(kPlaneBiasMaxRange, options.plane_bias_max, op);
-    const Image planes = options.plane_bias > 0.0f ? receiver_planes(op, receivers) : Image{};
+    const Image planes = options.plane_bias > 0.0f ? receiver_planes(op, receivers, options.derivatives) : Image{};
     const Image& rx = options.plane_bias > 0.0f ? planes : receivers;
     MomentParams p = base_params(table.sums, rx, out);
     set_msm_biases(p, op, table.quantization, options.moment_bias, options.depth_bias);

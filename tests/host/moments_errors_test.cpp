@@ -122,6 +122,9 @@ TEST_F(MomentsErrors, LookupsRejectBadReceiversTablesAndBiases)
         expect_error([&] { msm_soft(ctx, table, rx, MsmSoftOptions{0.02f, {}, {}, 1.0f, bad}); }, kArg, "msm_soft",
                      "plane-bias-max must be in [0, 1]");
     }
+    // The plane from channels the receivers do not have (u, v, z only).
+    expect_error([&] { msm_soft(ctx, table, rx, MsmSoftOptions{0.02f, {}, {}, 1.0f, 0.02f, DerivativeSource::Channels}); },
+                 kArg, "msm_soft", "receivers must have 5 channels (u, v, z, dzdu, dzdv), got 3");
     Image big_depth(600, 4, 1);
     const MsmTable big = build_msm_table(ctx, big_depth);
     expect_error([&] { msm_soft(ctx, big, testing::receivers_at_depth(600, 4, 0.5f), MsmSoftOptions{0.5f}); }, kArg,

@@ -96,54 +96,85 @@ PN_BACKEND_TEST(MsmSoftTest, NoHaloFromBlockersOfTwoDepths)
 // on the ground at every texel centre, so that the receivers' plane is
 // known in closed form and the library's finite differences must find it.
 // Bias shares 0.5 and 1, and 1 capped at 2e-3 (the cap binding); odd sizes.
-PN_BACKEND_TEST(MsmSoftTest, PlaneBiasMatchesTheFloat64Reference)
+// Ground sloping dz/du = 0.1, dz/dv = 0.05 under a square blocker at 0.15;
+// receivers on the ground (u, v, z), and with `slope_channels` also its
+// exact dzdu, dzdv as channels 3 and 4.
+struct SlopedGround {
+    static constexpr int w = 61, h = 47;
+    Image depth{w, h, 1}, rx;
+};
+
+SlopedGround sloped_ground(bool slope_channels)
+{
+    SlopedGround g;
+    g.rx = Image(g.w, g.h, slope_channels ? 5 : 3);
+    const auto ground = [&](double u, double v) { return float(0.4 + 0.1 * u + 0.05 * v); };
+    for (int y = 0; y < g.h; ++y)
+        for (int x = 0; x < g.w; ++x) {
+            const double u = (x + 0.5) / g.w, v = (y + 0.5) / g.h;
+            const bool blocker = x >= 20 && x < 30 && y >= 15 && y < 25;
+            g.depth.at(0, x, y) = blocker ? 0.15f : ground(u, v);
+            g.rx.at(0, x, y) = float(u);
+            g.rx.at(1, x, y) = float(v);
+            g.rx.at(2, x, y) = ground(u, v);
+        }
+    if (slope_channels) {
+        g.rx.fill(3, 0.1f);
+        g.rx.fill(4, 0.05f);
+    }
+    return g;
+}
+
+// msm_soft with the plane bias on the sloped ground against its float64
+// evaluation with the exact plane; `moved`: the largest rise over no bias.
+void expect_plane_bias_fidelity(Context& ctx, const std::string& backend, const SlopedGround& g, MsmSoftOptions o)
 {
     namespace fid = testing::fidelity;
+    const MsmTable table = build_msm_table(ctx, g.depth);
+    const Image out = msm_soft(ctx, table, g.rx, o);
+    fid::Params p;
+    p.light_size = o.light_size;
+    p.max_radius = kExactMaxRadius - 1;
+    p.moment_bias = default_moment_bias(table.quantization);
+    p.msm_depth_bias = default_depth_bias(table.quantization);
+    p.plane_bias = o.plane_bias;
+    p.plane_bias_max = o.plane_bias_max;
+    p.plane_dzdu = 0.1L;
+    p.plane_dzdv = 0.05L;
+    if (o.light_size == 0.3f && o.plane_bias_max == 0.02f) {  // a case where the bias matters
+        const Image unbiased = msm_soft(ctx, table, sloped_ground(false).rx, MsmSoftOptions{0.3f, {}, {}});
+        float moved = 0.0f;
+        for (int i = 0; i < g.w * g.h; ++i)
+            moved = std::max(moved, out.at(0, i % g.w, i / g.w) - unbiased.at(0, i % g.w, i / g.w));
+        EXPECT_GT(moved, 0.05f) << backend << " plane bias " << o.plane_bias;
+    }
+    const fid::Tally t = fid::judge_all(fid::Method::MsmSoft, g.depth, g.rx, out, p);
+    EXPECT_EQ(t.failed, 0) << backend << " L " << o.light_size << " plane bias " << o.plane_bias << " cap "
+                           << o.plane_bias_max << ": " << t.failed << " of " << t.receivers << " fail (worst "
+                           << t.worst << ")\n" << t.first_failures;
+}
+
+PN_BACKEND_TEST(MsmSoftTest, PlaneBiasMatchesTheFloat64Reference)
+{
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    const int w = 61, h = 47;
-    const auto ground = [&](double u, double v) { return float(0.4 + 0.1 * u + 0.05 * v); };
-    Image depth(w, h, 1);
-    Image rx(w, h, 3);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const double u = (x + 0.5) / w, v = (y + 0.5) / h;
-            const bool blocker = x >= 20 && x < 30 && y >= 15 && y < 25;
-            depth.at(0, x, y) = blocker ? 0.15f : ground(u, v);
-            rx.at(0, x, y) = float(u);
-            rx.at(1, x, y) = float(v);
-            rx.at(2, x, y) = ground(u, v);
-        }
-    const MsmTable table = build_msm_table(ctx, depth);
-    const Image unbiased = msm_soft(ctx, table, rx, MsmSoftOptions{0.3f, {}, {}});
+    const SlopedGround g = sloped_ground(false);
     struct Bias {
         float share, cap;
     };
     for (float light : {0.1f, 0.3f})
-        for (Bias b : {Bias{0.5f, 0.02f}, Bias{1.0f, 0.02f}, Bias{1.0f, 2e-3f}}) {
-            MsmSoftOptions o{light, {}, {}};
-            o.plane_bias = b.share;
-            o.plane_bias_max = b.cap;
-            const Image out = msm_soft(ctx, table, rx, o);
-            fid::Params p;
-            p.light_size = light;
-            p.max_radius = kExactMaxRadius - 1;
-            p.moment_bias = default_moment_bias(table.quantization);
-            p.msm_depth_bias = default_depth_bias(table.quantization);
-            p.plane_bias = b.share;
-            p.plane_bias_max = b.cap;
-            p.plane_dzdu = 0.1L;
-            p.plane_dzdv = 0.05L;
-            if (light == 0.3f && b.cap == 0.02f) {  // a case where the bias matters
-                float moved = 0.0f;
-                for (int i = 0; i < w * h; ++i)
-                    moved = std::max(moved, out.at(0, i % w, i / w) - unbiased.at(0, i % w, i / w));
-                EXPECT_GT(moved, 0.05f) << backend << " plane bias " << b.share;
-            }
-            const fid::Tally t = fid::judge_all(fid::Method::MsmSoft, depth, rx, out, p);
-            EXPECT_EQ(t.failed, 0) << backend << " L " << light << " plane bias " << b.share << " cap " << b.cap
-                                   << ": " << t.failed << " of " << t.receivers << " fail (worst " << t.worst
-                                   << ")\n" << t.first_failures;
-        }
+        for (Bias b : {Bias{0.5f, 0.02f}, Bias{1.0f, 0.02f}, Bias{1.0f, 2e-3f}})
+            expect_plane_bias_fidelity(ctx, backend, g, MsmSoftOptions{light, {}, {}, b.share, b.cap});
+}
+
+// The plane read from the receivers' channels dzdu, dzdv (no host pass of
+// finite differences) meets the same float64 reference.
+PN_BACKEND_TEST(MsmSoftTest, PlaneBiasFromChannelsMatchesTheFloat64Reference)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    const SlopedGround g = sloped_ground(true);
+    for (float light : {0.1f, 0.3f})
+        expect_plane_bias_fidelity(ctx, backend, g,
+                                   MsmSoftOptions{light, {}, {}, 1.0f, 0.02f, DerivativeSource::Channels});
 }
 
 // No blocker in front: exactly 1. On flat ground 0.01 below the receivers

@@ -14,6 +14,7 @@
 // once per context (PoCL compiles at run time: seconds, cached on disk).
 #pragma once
 
+#include <functional>
 #include <future>
 #include <memory>
 #include <string>
@@ -63,9 +64,14 @@ private:
 // Makes a Context on another thread and returns at once, so that the caller
 // can read its inputs meanwhile: an OpenCL driver takes tens of milliseconds
 // to start (PoCL loads LLVM and probes the CPU: about half of a warm
-// `penumbra shade`, docs/opencl_startup.md). The context's errors come from
-// get(). What the driver needs of the process environment is set before this
-// returns, so that no other thread reads the environment while it changes.
-std::future<Context> start_context(ContextOptions options = {});
+// `penumbra shade`, docs/opencl_startup.md). `prepare`, when given, runs on
+// that thread on the new context before get() returns it: `shade` passes its
+// method's warm_up (penumbra/methods.h), so that the programs the method
+// launches are loaded while the inputs are still being read. The context's
+// errors come from get(); an Error that `prepare` throws is dropped (the real
+// run meets it again and reports it). What the driver needs of the process
+// environment is set before this returns, so that no other thread reads the
+// environment while it changes.
+std::future<Context> start_context(ContextOptions options = {}, std::function<void(Context&)> prepare = {});
 
 }  // namespace penumbra

@@ -123,6 +123,12 @@ struct Method {
     // Both steps, into a new image, as `penumbra shade` and `penumbra demo`
     // run a method; a benchmark times each step alone.
     Image run(Context& context, const Image& map, const Image& receivers, const MethodSettings& settings) const;
+    // Both steps on a one-texel map and receivers, on a backend that builds
+    // or loads its programs on first use (OpenCL), so that this method's are
+    // ready before a real run (start_context's `prepare`); nothing on the
+    // CPU backends. The kernels launched are the ones run() launches, found
+    // by running it rather than listed. May throw what run() throws.
+    void warm_up(Context& context, const MethodSettings& settings) const;
 };
 
 // The receivers' channels a method run with `settings` reads from a file:

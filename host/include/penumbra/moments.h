@@ -29,6 +29,7 @@
 #include "penumbra/image.h"
 #include "penumbra/moment_table.h"
 #include "penumbra/parameter_range.h"
+#include "penumbra/pcf.h"
 
 namespace penumbra {
 
@@ -94,10 +95,14 @@ struct MsmSoftOptions {
     // window compares against z - depth_bias - min(plane_bias x the plane's
     // largest drop inside it, plane_bias_max). 0 = off, the window contract
     // of the other lookups; 1 = a planar receiver never shadows itself. The
-    // plane: dz/du, dz/dv by finite differences on the receivers' grid, as
-    // the percentage-closer family's (pcf_receivers, penumbra/pcf.h).
+    // plane: dz/du, dz/dv as the percentage-closer family's (pcf_receivers,
+    // penumbra/pcf.h): by finite differences on the receivers' grid (a host
+    // pass over the receivers on every call), or from the receivers' channels
+    // 3 and 4 (dzdu, dzdv) with DerivativeSource::Channels, which a renderer
+    // that has them (its G-buffer's depth derivatives) should pass.
     float plane_bias = 0.0f;            // in [0, 16]
     float plane_bias_max = 0.02f;       // in [0, 1], depth units
+    DerivativeSource derivatives = DerivativeSource::FiniteDifferences;
 };
 
 Image msm(Context& context, const MsmTable& table, const Image& receivers, const MsmOptions& options = {});
