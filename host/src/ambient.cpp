@@ -8,15 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "ambient_weights.h"
 #include "host/backend/backend.h"
 #include "penumbra/ambient.h"
 #include "penumbra/error.h"
 
 namespace penumbra {
-namespace detail {
-void polynomial_weights(const ShIrradiance& sh, float* weights);  // ambient_rig.cpp
-}
-
 namespace {
 
 const std::string kOp = "ambient";

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <string>
 
+#include "ambient_weights.h"
 #include "penumbra/ambient.h"
 #include "penumbra/error.h"
 
@@ -139,8 +140,6 @@ std::array<double, 3> exact_irradiance(const AmbientRig& rig, AmbientVector norm
 
 namespace detail {
 
-// The kernel's polynomial weights (kernels/ambient_sh.h): each coefficient
-// times its basis function's constant, channel-major.
 void polynomial_weights(const ShIrradiance& sh, float* weights)
 {
     const std::array<double, 9>& k = basis_constants();
