@@ -48,7 +48,7 @@ PN_FN pn_float ambient_cube_stretch(pn_float a2, pn_float b2)
     return pn_sqrt(pn_max(1.0f - 0.5f * a2 - 0.5f * b2 + (1.0f / 3.0f) * a2 * b2, 0.0f));
 }
 
-/* One volume's blend factor at offset o from the first volume record r. */
+/* The factor of the volume whose record starts at r, at world position p. */
 PN_FN pn_float ambient_volume_factor(PN_GLOBAL const float* r, AmbientLanes3 p)
 {
     AmbientLanes3 o;

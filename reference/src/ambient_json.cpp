@@ -177,7 +177,9 @@ std::vector<AmbientVolume> volumes_from_json(std::string_view text, std::string_
     return parse(text, source_name, kLoadVolumes, [](const Reader& r, const json& root) {
         if (!root.is_object()) r.fail("(document)", "must be a JSON object with \"volumes\"");
         r.only_keys(root, "", {"volumes"});
-        return read_volumes(r, r.member(root, "", "volumes"), "volumes");
+        const json& volumes = r.member(root, "", "volumes");
+        if (volumes.is_array() && volumes.empty()) r.fail("volumes", "must hold at least one volume");
+        return read_volumes(r, volumes, "volumes");
     });
 }
 

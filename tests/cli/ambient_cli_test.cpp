@@ -124,6 +124,25 @@ TEST_F(AmbientCli, ASceneCarriesItsRigAndVolumes)
     EXPECT_EQ(again.ambient->volumes.size(), 2u);
 }
 
+// A normals image of its own (R, G, B here), and its zero normal named by file.
+TEST_F(AmbientCli, NormalsFromTheirOwnFile)
+{
+    write_exr(path("n.exr"), rx_.normal, {"R", "G", "B"});
+    const std::string args = ambient("--rig " + path("rig.json") + " --dark-rig " + path("dark.json") + " --volumes " +
+                                     path("volumes.json") + " --normals " + path("n.exr"));
+    const testing::ToolRun r = run(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    AmbientLighting l;
+    l.light = project_rig(reference::load_rig(path("rig.json")));
+    l.dark = project_rig(reference::load_rig(path("dark.json")));
+    l.volumes = AmbientVolumes(reference::load_volumes(path("volumes.json")));
+    expect_output(l);
+    Image zero = rx_.normal;
+    for (int c = 0; c < 3; ++c) zero.at(c, 2, 1) = 0.0f;
+    write_exr(path("n.exr"), zero, {"R", "G", "B"});
+    expect_bad_input(args, "n.exr: pixel (2, 1) of the receivers: the normal is zero");
+}
+
 TEST_F(AmbientCli, BadInputExitsWithOneLine)
 {
     write("nan.json", R"({"lights": [{"direction": [0, 1, 0], "intensity": NaN}]})");
@@ -135,6 +154,7 @@ TEST_F(AmbientCli, BadInputExitsWithOneLine)
     write("flat.json", R"({"volumes": [{"shape": "box", "center": [0, 0, 0], "half_size": [1, 0, 1]}]})");
     write("cone.json", R"({"volumes": [{"shape": "cone", "center": [0, 0, 0], "radius": 1}]})");
     write("broken.json", R"({"lights": [)");
+    write("novolumes.json", R"({"volumes": []})");
     const std::string rig = "--rig " + path("rig.json");
     const std::string dark = " --dark-rig " + path("dark.json");
     expect_bad_input(ambient("--rig " + path("nan.json")), "not valid JSON");
@@ -146,6 +166,7 @@ TEST_F(AmbientCli, BadInputExitsWithOneLine)
     expect_bad_input(ambient("--rig " + path("broken.json")), "broken.json: not valid JSON");
     expect_bad_input(ambient(rig + dark + " --volumes " + path("flat.json")), "volumes[0].half_size");
     expect_bad_input(ambient(rig + dark + " --volumes " + path("cone.json")), "volumes[0].shape: must be sphere or box");
+    expect_bad_input(ambient(rig + dark + " --volumes " + path("novolumes.json")), "volumes: must hold at least one volume");
     expect_bad_input(ambient(rig + " --volumes " + path("volumes.json")), "--dark-rig");
     expect_bad_input(ambient(rig + dark), "blend");
     expect_bad_input(ambient(rig + " --order 3"), "--order");

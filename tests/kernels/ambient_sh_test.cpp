@@ -192,14 +192,15 @@ PN_BACKEND_TEST(AmbientSh, BlendZeroAndOneReproduceEachRig)
               2e-6);
 }
 
-// Odd sizes (1x1, 7x3, widths around 16) and normals of any length, against
-// the float64 evaluation of the same coefficients.
+// Odd sizes (1x1, 7x3, widths around 4, 8 and 16 lanes, 3N + 1) and normals
+// of any length, against the float64 evaluation of the same coefficients.
 PN_BACKEND_TEST(AmbientSh, OddSizesAgainstFloat64)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     AmbientLighting l;
     l.light = project_rig(testing::error_table_rigs()[3].rig);
-    for (auto [w, h] : {std::pair{1, 1}, {7, 3}, {15, 2}, {16, 2}, {17, 2}, {33, 1}}) {
+    for (auto [w, h] : {std::pair{1, 1}, {3, 1}, {4, 1}, {5, 1}, {7, 3}, {8, 2}, {9, 2}, {13, 1}, {15, 2}, {16, 2},
+                        {17, 2}, {25, 1}, {49, 1}}) {
         Image n = testing::sphere_of_normals(w * h, w);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x)
