@@ -205,6 +205,30 @@ typedef struct {
     float falloff;       /* burley: opacity falloff distance in depth units; 0 = off */
 } SoftPcfParams;
 
+/* Ambient light rigs in spherical harmonics and ambient volumes
+ * (kernels/ambient_sh.h, kernels/ambient_volumes.h; host/src/ambient.cpp).
+ * The rigs' weights are per channel (R, G, B) the PN_SH_TERMS weights of the
+ * polynomial basis of kernels/ambient_sh.h, channel-major. */
+#define PN_SH_TERMS 9               /* order 2: 9 coefficients per channel */
+#define PN_AMBIENT_VOLUME_FLOATS 16 /* one volume record (kernels/ambient_volumes.h) */
+#define PN_AMBIENT_SPHERE 0
+#define PN_AMBIENT_BOX 1
+#define PN_AMBIENT_LIGHT_ONLY 0     /* the light rig alone */
+#define PN_AMBIENT_BLEND_PLANE 1    /* blend factor from receiver plane factor_plane */
+#define PN_AMBIENT_BLEND_VOLUMES 2  /* blend factor from the volumes at the receiver's position */
+typedef struct {
+    pn_dims receivers;   /* planes: normal x, y, z, then the factor or the position */
+    pn_dims out;         /* ambient_sh: 3 planes R, G, B; ambient_volumes: 1 plane, the factor */
+    int blend;           /* PN_AMBIENT_* */
+    int light_terms;     /* 4 (order 1) or 9 (order 2) */
+    int dark_terms;      /* 4 (order 1, or the notes' cheaper dark) or 9 */
+    int factor_plane;    /* PN_AMBIENT_BLEND_PLANE: the factor's receiver plane */
+    int position_plane;  /* volumes: the receiver plane of world x (then y, z) */
+    int volume_count;    /* records in the source */
+    float light[3 * PN_SH_TERMS];
+    float dark[3 * PN_SH_TERMS];
+} AmbientParams;
+
 #ifdef __cplusplus
 }  /* namespace penumbra */
 #endif

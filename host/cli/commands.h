@@ -28,5 +28,6 @@ int strata_for_samples(int samples);                // n such that n^2 ~ samples
 extern const std::vector<std::string> kReceiverChannels;
 Image pack_receivers(const reference::Receivers& receivers);
 int blur_command(const std::vector<std::string>& args);
+int ambient_command(const std::vector<std::string>& args);
 
 }  // namespace penumbra::cli

@@ -49,6 +49,8 @@ const std::vector<Command>& commands()
          "sphere-traced distance-field soft shadows (sdf-shade --help)", sdf_shade_command},
         {"sdf-bake", "--scene S --out GRID.pnsdf [--voxel V]", "a scene's distance grid, for sdf-shade --grid",
          sdf_bake_command},
+        {"ambient", "--rig RIG.json [--dark-rig DARK.json --volumes VOL.json] --receivers RX.exr --out OUT.exr",
+         "irradiance from SH ambient rigs and volumes (ambient --help)", ambient_command},
     };
     return table;
 }

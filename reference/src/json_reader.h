@@ -21,11 +21,15 @@ inline constexpr std::string_view kLoad = "load_scene";
 
 class Reader {
 public:
-    explicit Reader(std::string context) : context_(std::move(context)) {}
+    // `operation`: the Error's (load_scene, or load_rig for an ambient rig's file).
+    explicit Reader(std::string context, std::string_view operation = kLoad)
+        : context_(std::move(context)), operation_(operation)
+    {
+    }
 
     [[noreturn]] void fail(const std::string& field, std::string_view what) const
     {
-        throw Error(ErrorCategory::InvalidArgument, kLoad, context_ + field + ": " + std::string(what));
+        throw Error(ErrorCategory::InvalidArgument, operation_, context_ + field + ": " + std::string(what));
     }
 
     // `extra`: keys the caller's context adds (a primitive's opacity, a medium's extinction).
@@ -101,6 +105,7 @@ public:
 
 private:
     std::string context_;
+    std::string_view operation_;
 };
 
 json to_json(Vec3 v);

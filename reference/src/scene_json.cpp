@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "ambient_json_parts.h"
 #include "json_reader.h"
 #include "penumbra/error.h"
 #include "penumbra/input_file.h"
@@ -166,7 +167,8 @@ Scene read_scene(const Reader& r, const json& root)
 {
     if (!root.is_object()) r.fail("(document)", "must be a JSON object");
     r.only_keys(root, "",
-                {"name", "description", "map_size", "primitives", "media", "hair", "light", "light_camera", "view"});
+                {"name", "description", "map_size", "primitives", "media", "hair", "light", "light_camera", "view",
+                 "ambient"});
     Scene scene;
     if (root.contains("name")) scene.name = r.string(root, "", "name");
     if (root.contains("description")) scene.description = r.string(root, "", "description");
@@ -177,6 +179,7 @@ Scene read_scene(const Reader& r, const json& root)
     scene.light = read_light(r, root);
     scene.light_camera = read_light_camera(r, root);
     scene.view = read_view(r, root);
+    if (root.contains("ambient")) scene.ambient = read_scene_ambient(r, root["ambient"], "ambient");
     return scene;
 }
 
@@ -266,6 +269,7 @@ std::string scene_to_json(const Scene& scene)
     // Written only when present, so the scenes without them read as they did.
     if (!scene.media.empty()) root["media"] = media_to_json(scene.media);
     if (!scene.hair.empty()) root["hair"] = hair_to_json(scene.hair);
+    if (scene.ambient) root["ambient"] = scene_ambient_to_json(*scene.ambient);
     return root.dump(2) + "\n";
 }
 

@@ -13,6 +13,7 @@
 // SIMD is bit-identical for the Chebyshev and MSM entries there.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "host/backend/backend.h"
+#include "penumbra/ambient.h"
 #include "penumbra/chebyshev.h"
 #include "penumbra/moments.h"
 #include "support/backends.h"
@@ -106,6 +108,41 @@ LookupRun map_run_of(const Image& map, typename detail::KernelTraits<K>::Params 
     };
 }
 
+// The ambient entries read volume records, not a map (penumbra/ambient.h):
+// the factor of a box over the receivers' (u, v, z) as positions, and the
+// red irradiance of one strong light along +x with the normals
+// (u - 0.5, v - 0.5, z - 0.45), clamped into [0, 1] (the SH irradiance
+// rings a little below 0 behind the light).
+LookupRun ambient_volumes_run()
+{
+    AmbientVolume box;
+    box.shape = AmbientVolume::Shape::Box;
+    box.center = {0.5, 0.5, 0.5};
+    box.half_size = {0.4, 0.4, 0.4};
+    box.falloff_delay = 0.85;
+    return [box](Context& context, const Image& receivers, Image& out) {
+        const Image f = ambient_volume_factor(context, receivers, AmbientVolumes({box}));
+        for (int y = 0; y < out.height(); ++y)
+            for (int x = 0; x < out.width(); ++x) out.at(0, x, y) = f.at(0, x, y);
+    };
+}
+
+LookupRun ambient_sh_run()
+{
+    return [](Context& context, const Image& receivers, Image& out) {
+        Image normals(receivers.width(), receivers.height(), 3);
+        const float centre[3] = {0.5f, 0.5f, 0.45f};
+        for (int c = 0; c < 3; ++c)
+            for (int y = 0; y < receivers.height(); ++y)
+                for (int x = 0; x < receivers.width(); ++x) normals.at(c, x, y) = receivers.at(c, x, y) - centre[c];
+        AmbientLighting l;
+        l.light = project_rig(AmbientRig{{{{1, 0, 0}, {1, 1, 1}, 1.5}}});
+        const Image e = ambient_irradiance(context, normals, l);
+        for (int y = 0; y < out.height(); ++y)
+            for (int x = 0; x < out.width(); ++x) out.at(0, x, y) = std::clamp(e.at(0, x, y), 0.0f, 1.0f);
+    };
+}
+
 // The Params of each lookup-shaped entry, as its operation fills them
 // (host/src/chebyshev.cpp, moments.cpp); an empty run for an entry with no case.
 template <KernelId K>
@@ -166,6 +203,9 @@ LookupRun lookup_case(const Sources& s)
         p.max_radius = 0.3f;
         p.bias_slope = 2.0f;
         if (name == "pcss" || name == "burley") return map_run_of<K>(depth_map(), p, &Params::depth);
+    } else if constexpr (std::is_same_v<Params, AmbientParams>) {
+        if (name == "ambient_volumes") return ambient_volumes_run();
+        if (name == "ambient_sh") return ambient_sh_run();
     }
     return {};
 }

@@ -15,11 +15,13 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
 
+#include "penumbra/reference/ambient_json.h"
 #include "penumbra/reference/geometry.h"
 
 namespace penumbra::reference {
@@ -158,6 +160,8 @@ struct Scene {
     // The shadow-map side the scene is designed for (texel-size claims in the
     // scene's description refer to it). Every render works at any size.
     int map_size = 1024;
+    // Optional ambient lighting: rigs and volumes (docs/ambient.md).
+    std::optional<SceneAmbient> ambient;
 };
 
 // Throws Error(InvalidArgument, operation, "<context><field path>: <what is
