@@ -116,6 +116,11 @@ PN_FN void pn_ugather_pair(global const uint* ptr, int index, uint* first, uint*
     *first = pair.x;
     *second = pair.y;
 }
+/* A pair kept whole (kernels/dialect.h): OpenCL's uint2, whose - wraps per
+ * component. The join is exact (both products and the sum below 2^49). */
+typedef uint2 pn_upair;
+PN_FN pn_upair pn_ugather_upair(global const uint* ptr, int index) { return vload2(0, ptr + index); }
+PN_FN double pn_upair_join(pn_upair v) { return (double)v.x * 65536.0 + (double)v.y; }
 
 PN_FN void pn_ustore_pair_stream(global uint* plane, pn_dims d, int x, int y, uint first, uint second)
 {

@@ -27,18 +27,25 @@ typedef struct {
     pn_int x0, x1, y0, y1;
 } TexelWindow;
 
-/* The texel containing (u, v), clamped to the map, grown by r and clipped. */
-PN_FN TexelWindow texel_window(pn_dims t, pn_float u, pn_float v, int radius)
+/* The texel containing (u, v), clamped to the map, grown by rx columns and
+ * ry rows on each side and clipped. */
+PN_FN TexelWindow texel_window_xy(pn_dims t, pn_float u, pn_float v, int rx, int ry)
 {
     const float w = (float)t.width, h = (float)t.height;
     const pn_float tx = pn_clamp(pn_floor(u * w), 0.0f, w - 1.0f);
     const pn_float ty = pn_clamp(pn_floor(v * h), 0.0f, h - 1.0f);
     TexelWindow win;
-    win.x0 = pn_to_int(pn_max(tx - (float)radius, 0.0f));
-    win.x1 = pn_to_int(pn_min(tx + (float)(radius + 1), w));
-    win.y0 = pn_to_int(pn_max(ty - (float)radius, 0.0f));
-    win.y1 = pn_to_int(pn_min(ty + (float)(radius + 1), h));
+    win.x0 = pn_to_int(pn_max(tx - (float)rx, 0.0f));
+    win.x1 = pn_to_int(pn_min(tx + (float)(rx + 1), w));
+    win.y0 = pn_to_int(pn_max(ty - (float)ry, 0.0f));
+    win.y1 = pn_to_int(pn_min(ty + (float)(ry + 1), h));
     return win;
+}
+
+/* The texel containing (u, v), clamped to the map, grown by r and clipped. */
+PN_FN TexelWindow texel_window(pn_dims t, pn_float u, pn_float v, int radius)
+{
+    return texel_window_xy(t, u, v, radius, radius);
 }
 
 /* The opening of the box-window lookups (vsm, msm, evsm): PN_LOOKUP_BEGIN

@@ -78,6 +78,11 @@
  *   pn_ugather_pair(ptr, index, &first, &second)  ptr[index] and ptr[index + 1]
  *                                   per lane (both in bounds): one 64-bit gather
  *                                   element per lane on SIMD instead of two
+ *   pn_upair                        per-pixel pair of uint32 kept whole, as gathered
+ *   pn_ugather_upair(ptr, index)    ptr[index] and ptr[index + 1] as one pn_upair
+ *                                   (both in bounds); a - b wraps each part on its
+ *                                   own; pn_upair_join(v) = first 2^16 + second as
+ *                                   pn_double (exact: a limb pair's window sum)
  *   pn_ustore_pair_stream(plane, dims, x, y, first, second)  two strips
  *                                   interleaved: element 2 (y pitch + x + i) + 0 / + 1
  *                                   get lane i of first / second (lanes past the

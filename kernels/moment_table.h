@@ -312,17 +312,14 @@ PN_FN pn_sum_##variant sat_box_sum_##variant(PN_GLOBAL const T* plane, pn_dims t
 PN_TABLE_VARIANTS(PN_SAT_BOX_SUM)
 
 /* The same over a pair plane: both limbs of the four corners, one 64-bit
- * gather element per corner and lane. */
-PN_FN void sat_box_sum_pair(PN_GLOBAL const uint* pair, pn_dims t, pn_int x0, pn_int x1, pn_int y0, pn_int y1,
-                            pn_uint* first, pn_uint* second)
+ * gather element per corner and lane, subtracted as gathered (pn_upair). */
+PN_FN pn_upair sat_box_sum_pair(PN_GLOBAL const uint* pair, pn_dims t, pn_int x0, pn_int x1, pn_int y0, pn_int y1)
 {
-    pn_uint a0, a1, b0, b1, c0, c1, d0, d1;
-    pn_ugather_pair(pair, sat_corner_index(t, x0, y0) * 2, &a0, &a1);
-    pn_ugather_pair(pair, sat_corner_index(t, x1, y0) * 2, &b0, &b1);
-    pn_ugather_pair(pair, sat_corner_index(t, x0, y1) * 2, &c0, &c1);
-    pn_ugather_pair(pair, sat_corner_index(t, x1, y1) * 2, &d0, &d1);
-    *first = (d0 - c0) - (b0 - a0);
-    *second = (d1 - c1) - (b1 - a1);
+    const pn_upair a = pn_ugather_upair(pair, sat_corner_index(t, x0, y0) * 2);
+    const pn_upair b = pn_ugather_upair(pair, sat_corner_index(t, x1, y0) * 2);
+    const pn_upair c = pn_ugather_upair(pair, sat_corner_index(t, x0, y1) * 2);
+    const pn_upair d = pn_ugather_upair(pair, sat_corner_index(t, x1, y1) * 2);
+    return (d - c) - (b - a);
 }
 
 /* The value of one step of limb 0: 2^-16 in limb tables; a table of one
@@ -335,23 +332,17 @@ PN_FN double sat_limb_unit(int limbs)
 
 /* Sum of value k of a limb table over the texels [x0, x1) x [y0, y1), in units
  * of `unit` per step of limb 0 (2^-16 for limb tables, each further limb
- * 2^-16 of the one before): sum_l S_l unit 2^(-16 l). */
+ * 2^-16 of the one before): sum_l S_l unit 2^(-16 l). Limbs 0 and 1 join
+ * exactly (S_0 2^16 + S_1 < 2^49); a third limb adds one rounding. */
 PN_FN pn_double sat_limb_box_sum(PN_GLOBAL const uint* table, pn_dims t, int limbs, int k, double unit, pn_int x0,
                                  pn_int x1, pn_int y0, pn_int y1)
 {
-    pn_uint s[3];
-    if (limbs == 1) {
-        s[0] = sat_box_sum_exact(PN_PLANE(table, t, k), t, x0, x1, y0, y1);
-    } else {
-        sat_box_sum_pair(PN_PLANE(table, t, k * limbs), t, x0, x1, y0, y1, &s[0], &s[1]);
-        if (limbs == 3) s[2] = sat_box_sum_exact(PN_PLANE(table, t, k * limbs + 2), t, x0, x1, y0, y1);
-    }
-    pn_double total = 0.0;
-    for (int l = 0; l < limbs; ++l) {
-        total = total + pn_uint_to_double(s[l]) * unit;
-        unit = unit * (1.0 / 65536.0);
-    }
-    return total;
+    if (limbs == 1) return pn_uint_to_double(sat_box_sum_exact(PN_PLANE(table, t, k), t, x0, x1, y0, y1)) * unit;
+    const pn_double total =
+        pn_upair_join(sat_box_sum_pair(PN_PLANE(table, t, k * limbs), t, x0, x1, y0, y1)) * (unit * (1.0 / 65536.0));
+    if (limbs == 2) return total;
+    const pn_uint s2 = sat_box_sum_exact(PN_PLANE(table, t, k * limbs + 2), t, x0, x1, y0, y1);
+    return total + pn_uint_to_double(s2) * (unit * (1.0 / 4294967296.0));
 }
 
 /* A window with fractional edges, in exclusive-corner coordinates clipped to
@@ -420,16 +411,15 @@ PN_FN void sat_fractional_corners(PN_GLOBAL const uint* plane, pn_dims t, SatFra
     }
 }
 
-/* The same for both limbs of a pair plane: the corner pair (a, a + 1) is
- * 16 contiguous bytes (two pair gathers), limb 0 into s0, limb 1 into s1. */
-PN_FN void sat_fractional_corners_pair(PN_GLOBAL const uint* pair, pn_dims t, SatFractionalWindow w,
-                                       pn_uint s0[4][4], pn_uint s1[4][4])
+/* The same for both limbs of a pair plane, kept whole: the corner pair
+ * (a, a + 1) is 16 contiguous bytes (two pair gathers). */
+PN_FN void sat_fractional_corners_pair(PN_GLOBAL const uint* pair, pn_dims t, SatFractionalWindow w, pn_upair s[4][4])
 {
     for (int j = 0; j < 4; ++j)
         for (int c = 0; c < 4; c += 2) {
             const pn_int i = sat_corner_index(t, w.x[c], w.y[j]) * 2;
-            pn_ugather_pair(pair, i, &s0[j][c], &s1[j][c]);
-            pn_ugather_pair(pair, i + 2, &s0[j][c + 1], &s1[j][c + 1]);
+            s[j][c] = pn_ugather_upair(pair, i);
+            s[j][c + 1] = pn_ugather_upair(pair, i + 2);
         }
 }
 
@@ -467,16 +457,20 @@ PN_FN pn_double sat_fractional_weighted(pn_uint s[4][4], SatFractionalWindow w)
 }
 
 /* The same for limbs 0 and 1 of a pair plane at once, in steps of limb 1:
- * each rectangle's R0 2^16 + R1 is an integer below 2^48, exact in double,
- * so the limbs are joined before the weighting and the weighted sum is formed
- * once instead of once per limb (measured: docs/moment_table.md). */
-PN_FN pn_double sat_fractional_weighted_pair(pn_uint s0[4][4], pn_uint s1[4][4], SatFractionalWindow w)
+ * each rectangle is subtracted as gathered, both limbs in one wrapping
+ * subtraction, and joined, R0 2^16 + R1, an integer below 2^48 (exact in
+ * double), so that the weighted sum is formed once instead of once per limb
+ * and no lane is moved between the gather and the double arithmetic
+ * (measured: docs/moment_table.md). */
+PN_FN pn_double sat_fractional_weighted_pair(pn_upair s[4][4], SatFractionalWindow w)
 {
     pn_double rect[3][3];
     for (int j = 0; j < 3; ++j)
-        for (int i = 0; i < 3; ++i)
-            rect[j][i] = pn_uint_to_double(sat_fractional_rect(s0, i, j)) * 65536.0 +
-                         pn_uint_to_double(sat_fractional_rect(s1, i, j));
+        for (int i = 0; i < 3; ++i) {
+            const int xl = sat_interval_lo(i), xh = sat_interval_hi(i);
+            const int yl = sat_interval_lo(j), yh = sat_interval_hi(j);
+            rect[j][i] = pn_upair_join((s[yh][xh] - s[yh][xl]) - (s[yl][xh] - s[yl][xl]));
+        }
     return sat_fractional_weighted_rects(rect, w);
 }
 
@@ -484,16 +478,17 @@ PN_FN pn_double sat_fractional_weighted_pair(pn_uint s0[4][4], pn_uint s1[4][4],
 PN_FN pn_double sat_limb_fractional_sum(PN_GLOBAL const uint* table, pn_dims t, int limbs, int k, double unit,
                                         SatFractionalWindow w)
 {
-    pn_uint s[3][4][4];
+    pn_uint s[4][4];
     if (limbs == 1) {
-        sat_fractional_corners(PN_PLANE(table, t, k), t, w, s[0]);
-        return sat_fractional_weighted(s[0], w) * unit;
+        sat_fractional_corners(PN_PLANE(table, t, k), t, w, s);
+        return sat_fractional_weighted(s, w) * unit;
     }
-    sat_fractional_corners_pair(PN_PLANE(table, t, k * limbs), t, w, s[0], s[1]);
-    pn_double total = sat_fractional_weighted_pair(s[0], s[1], w) * (unit * (1.0 / 65536.0));
+    pn_upair pairs[4][4];
+    sat_fractional_corners_pair(PN_PLANE(table, t, k * limbs), t, w, pairs);
+    pn_double total = sat_fractional_weighted_pair(pairs, w) * (unit * (1.0 / 65536.0));
     if (limbs == 3) {
-        sat_fractional_corners(PN_PLANE(table, t, k * limbs + 2), t, w, s[2]);
-        total = total + sat_fractional_weighted(s[2], w) * (unit * (1.0 / 4294967296.0));
+        sat_fractional_corners(PN_PLANE(table, t, k * limbs + 2), t, w, s);
+        total = total + sat_fractional_weighted(s, w) * (unit * (1.0 / 4294967296.0));
     }
     return total;
 }

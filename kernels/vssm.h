@@ -2,8 +2,10 @@
  *
  * Per receiver (u, v, z), with light_size L the light's width in texture
  * units at the near plane:
- *  1. Blocker search: over a window of width L (half-width L W / 2 texels)
- *     centred at (u, v), the Chebyshev bound p = P(depth >= z) is the lit
+ *  1. Blocker search: over the box of (2 R + 1)^2 texels centred on the
+ *     receiver's texel, R = floor(max(L W / 2, 1/2)) per axis (the odd width
+ *     nearest L W), clipped to the map (the box methods' texel window,
+ *     kernels/box_window.h), the Chebyshev bound p = P(depth >= z) is the lit
  *     fraction; assuming the non-blockers lie at z, mean = p z + (1 - p) z_occ,
  *     so the average blocker depth is z_occ = (mean - p z) / (1 - p).
  *     p -> 1 (1 - p < 1e-4): no blocker, fully lit. z_occ <= 0 (blockers at
@@ -14,8 +16,12 @@
  *     fractional, by interpolating the table (kernels/moment_table.h).
  *  3. The Chebyshev bound over that window, with the variance floor and the
  *     light-bleeding reduction. Output in [0, 1].
- * Windows are centred at the continuous texel position (u W, v H), so the
- * estimate varies smoothly with (u, v).
+ * The filter window is centred at the continuous texel position (u W, v H),
+ * so the estimate varies smoothly with (u, v) within a texel. The search is
+ * an integer window (4 corners per value, not a fractional window's 16: 40
+ * pair gathers per receiver instead of 64, docs/moment_table.md): the
+ * blocker depth, and so the filter's width, is one value per texel and steps
+ * at texel edges (docs/moments.md, "VSSM's search window").
  */
 #ifndef PENUMBRA_VSSM_H
 #define PENUMBRA_VSSM_H
@@ -44,12 +50,29 @@ PN_FN pn_float vssm_blocker_depth(DepthMoments search, pn_float z, float min_var
     return pn_double_to_float((search.mean - p * zd) / safe_blocked);
 }
 
+/* The light's half-width in texels along an axis of `texels`, at least half
+ * a texel: the fractional search window's (msm-soft's) half-width, and the
+ * integer search box's radius is its floor. */
+PN_FN float vssm_search_half(const ChebyshevParams p, float texels)
+{
+    const float width = p.light_size * 0.5f * texels;
+    return width > 0.5f ? width : 0.5f;
+}
+
+/* MSM-soft's first search window (kernels/msm_soft.h): fractional, centred at (u W, v H). */
 PN_FN FractionalWindow vssm_search_window(const ChebyshevParams p, Receiver r)
 {
     const float w = (float)p.table.width, h = (float)p.table.height;
-    const float half_x = p.light_size * 0.5f * w > 0.5f ? p.light_size * 0.5f * w : 0.5f;
-    const float half_y = p.light_size * 0.5f * h > 0.5f ? p.light_size * 0.5f * h : 0.5f;
-    return clip_window(p.table, r.u * w, r.v * h, half_x, half_y);
+    return clip_window(p.table, r.u * w, r.v * h, vssm_search_half(p, w), vssm_search_half(p, h));
+}
+
+/* VSSM's search box: the receiver's texel grown by R_x, R_y and clipped
+ * (the conversion truncates: the floor of a positive half-width). */
+PN_FN TexelWindow vssm_search_box(const ChebyshevParams p, Receiver r)
+{
+    const int rx = (int)vssm_search_half(p, (float)p.table.width);
+    const int ry = (int)vssm_search_half(p, (float)p.table.height);
+    return texel_window_xy(p.table, r.u, r.v, rx, ry);
 }
 
 PN_FN FractionalWindow vssm_filter_window(const ChebyshevParams p, Receiver r, pn_float z_occ)
@@ -64,7 +87,8 @@ PN_KERNEL void vssm_##variant(PN_LOOKUP_ARGS(T, ChebyshevParams))               
 {                                                                                                                \
     PN_LOOKUP_BEGIN(r);                                                                                          \
     pn_mask lit;                                                                                                 \
-    const DepthMoments search = fractional_moments_##variant(table, p.table, p.limbs, vssm_search_window(p, r)); \
+    const TexelWindow box = vssm_search_box(p, r);                                                               \
+    const DepthMoments search = box_moments_##variant(table, p.table, p.limbs, box.x0, box.x1, box.y0, box.y1);  \
     const pn_float z_occ = vssm_blocker_depth(search, r.z, p.min_variance, &lit);                                \
     const DepthMoments filter =                                                                                  \
         fractional_moments_##variant(table, p.table, p.limbs, vssm_filter_window(p, r, z_occ));                  \

@@ -87,6 +87,14 @@ static void dialect_gather_pair_probe(const u32* table, const int* index, u32* f
     pn_ustore(first, dims, 0, 0, a);
     pn_ustore(second, dims, 0, 0, b);
 }
+static void dialect_upair_probe(const u32* table, const int* index_a, const int* index_b, double* joined)
+{
+    const pn_dims dims{kLanes, 1, kLanes, kLanes};
+    const auto lanes = [&](const int* index) {
+        return pn_uint_to_int_lanes(pn_uload(reinterpret_cast<const u32*>(index), dims, 0, 0));
+    };
+    probe_store(joined, pn_upair_join(pn_ugather_upair(table, lanes(index_a)) - pn_ugather_upair(table, lanes(index_b))));
+}
 }  // namespace penumbra::cpu::PN_ISA_NAMESPACE
 
 namespace penumbra::cpu {
@@ -107,6 +115,7 @@ static constexpr CpuKernels make_table()
     t.bilateral_vertical_span = &isa::bilateral_vertical_span;
     t.dialect_double_probe = &isa::dialect_double_probe;
     t.dialect_gather_pair_probe = &isa::dialect_gather_pair_probe;
+    t.dialect_upair_probe = &isa::dialect_upair_probe;
     return t;
 }
 

@@ -78,6 +78,9 @@ struct CpuKernels {
     void (*dialect_double_probe)(const float* f, const u32* u, double* d, float* g, u32* v);
     // pn_ugather_pair on one strip: first[i] = table[index[i]], second[i] = table[index[i] + 1].
     void (*dialect_gather_pair_probe)(const u32* table, const int* index, u32* first, u32* second);
+    // pn_upair on one strip: joined[i] = pn_upair_join(gather(index_a[i]) - gather(index_b[i])), the
+    // difference of (table[a], table[a + 1]) and (table[b], table[b + 1]), each part wrapping, joined.
+    void (*dialect_upair_probe)(const u32* table, const int* index_a, const int* index_b, double* joined);
 };
 
 // The member of CpuKernels that holds entry K: kernels.*CpuEntryMember<K>::pointer.

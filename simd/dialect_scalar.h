@@ -113,6 +113,13 @@ PN_FN void pn_ugather_pair(const std::uint32_t* ptr, std::int32_t index, std::ui
     *first = ptr[index];
     *second = ptr[index + 1];
 }
+// A pair kept whole (kernels/dialect.h): both parts wrap on their own.
+struct pn_upair {
+    std::uint32_t first, second;
+};
+PN_FN pn_upair operator-(pn_upair a, pn_upair b) { return {a.first - b.first, a.second - b.second}; }
+PN_FN pn_upair pn_ugather_upair(const std::uint32_t* ptr, std::int32_t index) { return {ptr[index], ptr[index + 1]}; }
+PN_FN double pn_upair_join(pn_upair v) { return double(v.first) * 65536.0 + double(v.second); }
 
 PN_FN void pn_ustore_pair_stream(std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t first, std::uint32_t second)
 {

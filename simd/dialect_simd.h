@@ -325,6 +325,56 @@ PN_FN void pn_ugather_pair(const uint* ptr, pn_int index, pn_uint* first, pn_uin
     *second = pn_uint::load_aligned(b);
 #endif
 }
+// A pair kept whole (kernels/dialect.h, pn_upair): the 64-bit gather
+// elements as they arrive, lanes [0, N/2) in lo and [N/2, N) in hi, the
+// halves of pn_double, so that neither subtraction nor join moves a lane
+// across. Each 64-bit element holds first in its low and second in its high
+// 32 bits; pn_uint's subtraction wraps each 32-bit part on its own.
+struct pn_upair {
+    pn_uint lo, hi;
+};
+PN_FN pn_upair operator-(pn_upair a, pn_upair b) { return {a.lo - b.lo, a.hi - b.hi}; }
+PN_FN pn_upair pn_ugather_upair(const uint* ptr, pn_int index)
+{
+#if defined(PN_ISA_avx512)
+    const __m512i zero = _mm512_setzero_si512();  // as pn_ugather_pair: the masked form
+    return {_mm512_mask_i32gather_epi64(zero, 0xFF, _mm512_castsi512_si256(index), ptr, 4),
+            _mm512_mask_i32gather_epi64(zero, 0xFF, _mm512_extracti64x4_epi64(index, 1), ptr, 4)};
+#elif defined(PN_ISA_avx2)
+    const auto* base = reinterpret_cast<const long long*>(ptr);
+    return {_mm256_i32gather_epi64(base, _mm256_castsi256_si128(index), 4),
+            _mm256_i32gather_epi64(base, _mm256_extracti128_si256(index, 1), 4)};
+#else
+    alignas(64) std::int32_t lanes[kLanes];
+    alignas(64) uint pairs[2 * kLanes];
+    index.store_aligned(lanes);
+    for (int i = 0; i < kLanes; ++i) {
+        pairs[2 * i] = ptr[lanes[i]];
+        pairs[2 * i + 1] = ptr[lanes[i] + 1];
+    }
+    return {pn_uint::load_aligned(pairs), pn_uint::load_aligned(pairs + kLanes)};
+#endif
+}
+// first 2^16 + second in 64-bit lanes (below 2^49), then to double; before
+// AVX-512 by the exponent trick: OR-ing an integer below 2^52 under the
+// exponent of 2^52 gives the double 2^52 + n exactly, and subtracting 2^52
+// leaves n.
+PN_FN pn_double_half pn_upair_join_half(pn_uint v)
+{
+#if defined(PN_ISA_avx512)
+    // AVX-512: the low part times 2^16 in one unsigned 32x32 -> 64 multiply,
+    // and AVX512DQ's exact uint64 -> double conversion (the value is below 2^53).
+    const __m512i joined = _mm512_add_epi64(_mm512_mul_epu32(v, _mm512_set1_epi64(65536)), _mm512_srli_epi64(v, 32));
+    return _mm512_cvtepu64_pd(joined);
+#else
+    using u64 = xsimd::batch<std::uint64_t, PN_ARCH>;
+    const u64 x = xsimd::bitwise_cast<u64>(v);
+    const u64 joined = ((x & u64(0xFFFFFFFFull)) << 16) + (x >> 32);
+    const u64 biased = joined | u64(0x4330000000000000ull);
+    return xsimd::bitwise_cast<pn_double_half>(biased) - pn_double_half(4503599627370496.0);
+#endif
+}
+PN_FN pn_double pn_upair_join(pn_upair v) { return {pn_upair_join_half(v.lo), pn_upair_join_half(v.hi)}; }
 // Two strips interleaved lane by lane, (first[i], second[i]) at elements
 // 2 (y pitch + x + i) + 0 / 1: the pair planes of the limb tables
 // (kernels/moment_table.h). The interleave is a two-source permute.

@@ -137,6 +137,30 @@ TEST(DialectGatherPair, AdjacentElementsPerLaneOnEveryCpuBinding)
     }
 }
 
+// pn_upair (kernels/dialect.h) on every CPU binding: both parts of a gathered
+// pair subtract on their own, wrapping (the table's values are spread over the
+// whole uint32 range), and join exactly as first 2^16 + second, lane by lane.
+TEST(DialectUpair, WrappingDifferencesJoinExactlyOnEveryCpuBinding)
+{
+    std::vector<cpu::u32> table(1000);
+    for (std::size_t i = 0; i < table.size(); ++i) table[i] = cpu::u32(0x9E3779B9u * (i + 1));
+    for (const std::string& isa : cpu_tables()) {
+        const cpu::CpuKernels& t = cpu::kernels_for(isa);
+        const int n = t.lanes;
+        std::vector<int> a(n), b(n);
+        std::vector<double> joined(n);
+        for (int i = 0; i < n; ++i) {
+            a[i] = (i * 37 + 11) % 900;
+            b[i] = (i * 53 + 4) % 900;
+        }
+        t.dialect_upair_probe(table.data(), a.data(), b.data(), joined.data());
+        for (int i = 0; i < n; ++i) {
+            const cpu::u32 first = table[a[i]] - table[b[i]], second = table[a[i] + 1] - table[b[i] + 1];
+            EXPECT_EQ(joined[i], double(first) * 65536.0 + double(second)) << isa << " lane " << i;
+        }
+    }
+}
+
 // ---- the kernel descriptions ------------------------------------------------------
 
 struct Source {

@@ -1,6 +1,7 @@
 // VSSM (kernels/vssm.h) against a hand-computed two-depth case and against a
-// brute-force reference in double (area-weighted texel sums for the fractional
-// windows), on every backend; its failure modes; its light-size checks.
+// brute-force reference in double (the search box's texels; area-weighted
+// texel sums for the fractional filter window), on every backend; its failure
+// modes; its light-size checks.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,8 +25,9 @@ using namespace testing;  // the references and checks of tests/support
 
 // ---- the brute-force reference ------------------------------------------------
 
-// Window moments over fractional windows and the Chebyshev bound, in double,
-// come from support/vsm_reference.h (covered_moments, chebyshev_upper_bound).
+// Window moments over integer and fractional windows and the Chebyshev bound,
+// in double, come from support/vsm_reference.h (covered_moments,
+// chebyshev_upper_bound).
 
 // Offsets added to the reference's intermediates, to measure how sensitive the
 // answer is to the kernel's float rounding of them (see vssm_expected).
@@ -52,7 +54,14 @@ VssmTrace vssm_reference(const Image& depth, Precision precision, const VssmOpti
                                std::clamp(cy - hy, 0.0, h), std::clamp(cy + hy, 0.0, h));
     };
     const double L = o.light_size;
-    Moments search = window(std::max(L * 0.5 * w, 0.5) + s.half, std::max(L * 0.5 * h, 0.5) + s.half);
+    // The search box: the receiver's texel grown by floor(max(L W / 2, 1/2))
+    // texels per axis (the half-width in float, as the kernel's geometry), clipped.
+    const auto radius = [&](int texels) { return std::floor(std::max(o.light_size * 0.5f * float(texels), 0.5f)); };
+    const double tx = std::clamp(std::floor(std::clamp(u, 0.0, 1.0) * w), 0.0, w - 1);
+    const double ty = std::clamp(std::floor(std::clamp(v, 0.0, 1.0) * h), 0.0, h - 1);
+    const double rx = radius(depth.width()), ry = radius(depth.height());
+    Moments search = covered_moments(depth, std::max(tx - rx, 0.0), std::min(tx + rx + 1, w), std::max(ty - ry, 0.0),
+                                     std::min(ty + ry + 1, h));
     search.mean += s.search_mean;
     const double p = chebyshev_upper_bound(search.mean_sq - search.mean * search.mean + s.search_var, z - search.mean,
                                  o.min_variance);
@@ -73,7 +82,8 @@ VssmTrace vssm_reference(const Image& depth, Precision precision, const VssmOpti
 // The reference and a tolerance from its sensitivity. The kernel forms the
 // window means from float sums (the nine weighted rectangles of a fractional
 // window: |dE| <= ~1e-6 relative to depths <= 1, |dvar| <= 2e-6) and the
-// window edges in float (texel coordinates below 2^7: <= 1e-5). The tolerance
+// filter window's edges in float (texel coordinates below 2^7: <= 1e-5;
+// the search box's edges are integers). The tolerance
 // is 1e-5 plus, for each of those six intermediates, the largest change of the
 // reference when that one is moved by its bound either way (first order in
 // each). The chain is steep where z_occ is small (d half / d z_occ =
@@ -140,41 +150,30 @@ class VssmTest : public ::testing::TestWithParam<std::string> {};
 
 // ---- the hand-computed case -----------------------------------------------------
 
-// A 64x64 map at depth 0.75 with a 16x16 checkerboard of blockers at 0.25 over
-// texels [24, 40)^2 (128 blockers); receiver at the centre, u = v = 0.5 (texel
-// position 32, 32), z = 0.75; light_size L = 0.25.
-//  Search: half-width L W / 2 = 0.25 * 64 / 2 = 8 texels: window [24, 40)^2,
-//    exactly the checkerboard, half blockers.
-//    mean = (0.25 + 0.75) / 2 = 0.5; E[z^2] = (0.0625 + 0.5625) / 2 = 0.3125;
-//    var = 0.3125 - 0.25 = 0.0625; d = 0.75 - 0.5 = 0.25, d^2 = 0.0625;
-//    p = 0.0625 / (0.0625 + 0.0625) = 0.5 (tight: the bound is attained by a
-//    two-point distribution); z_occ = (mean - p z) / (1 - p)
-//    = (0.5 - 0.375) / 0.5 = 0.25, the blockers' depth exactly.
+// A 64x64 map at depth 0.75 with a 17x17 checkerboard of blockers at 0.25 over
+// texels [24, 41)^2 (145 blockers, the corners included); receiver at the
+// centre, u = v = 0.5 (texel 32, continuous position 32, 32), z = 0.75;
+// light_size L = 0.25.
+//  Search: radius floor(L W / 2) = floor(0.25 * 64 / 2) = 8 texels around
+//    texel 32: the box [24, 41)^2, exactly the checkerboard; blockers q =
+//    145/289. A two-point distribution (0.25 with weight q, 0.75) seen from
+//    its upper point attains the bound: mean = 0.75 - q/2, var = q (1 - q)/4,
+//    d = q/2, p = var / (var + d^2) = 1 - q, and z_occ = (mean - p z) / (1 - p)
+//    = (q/4) / q = 0.25, the blockers' depth, for any q (in double: to ~1e-16).
 //  Penumbra: w = L (z - z_occ) / z_occ = 0.25 * 0.5 / 0.25 = 0.5 texture units;
-//    half-width w W / 2 = 16 texels: window [16, 48)^2 = 1024 texels, 128 blockers.
-//  Filter: mean = (128 * 0.25 + 896 * 0.75) / 1024 = 0.6875;
-//    E[z^2] = (128 * 0.0625 + 896 * 0.5625) / 1024 = 0.5; var = 0.5 - 0.6875^2
-//    = 0.02734375; d = 0.0625, d^2 = 0.00390625;
-//    p = 0.02734375 / 0.03125 = 0.875 = 7/8, the fraction of lit texels.
-// Every number is dyadic: a float table's sums are exact, so 1e-4 is slack.
-//
-// Exact table, by hand: 0.75 -> q = 49151 (decodes 0.75 - 3.8e-6), 0.25 ->
-// 16384 (0.25 + 3.8e-6); m2 of 0.75 decodes 7.6e-6 above q^2/65535^2, of 0.25
-// exactly. Search: var grows by 3.8e-6 (half the texels carry the residue),
-// the mean does not move; dp/dvar = d^2/(var + d^2)^2 = 4: dp = 1.5e-5,
-// dz_occ/dp = (mean - z) / (1 - p)^2 = -1: dz_occ = -1.5e-5, and the filter
-// half-width h = 32 (z / z_occ - 1) moves by 96 * 1.5e-5 = 1.5e-3 texels.
-// Filter, visibility 1 - 32 / h^2: dv/dh = 64 / h^3 = 0.0156, dv = 2.3e-5; its
-// var grows by 6.7e-6 (dp = 4 * 6.7e-6 = 2.7e-5) and its mean falls by 2.9e-6
-// (dp/dd = -3.5: dp = 1e-5). Sum: |v - 7/8| <= 6e-5; with the float rounding
-// of the kernel, the stated tolerance is 1e-4 (and the kernel must match the
-// quantized reference to its own computed tolerance).
+//    half-width w W / 2 = 16 texels: window [16, 48)^2 = 1024 texels, 145 blockers.
+//  Filter: the same two-point argument, p = 879/1024, the fraction of lit texels.
+// The filter's sums are dyadic (exact in a float table); the search's mean is
+// not (289 texels), which moves z_occ by about 1e-7 and the filter's
+// half-width by about 1e-5 texels: 1e-4 is slack. An exact table's sums are
+// exact; its values' rounding (2^-33) is far below that.
+constexpr double kCheckerboardVisibility = 879.0 / 1024.0;
 Image checkerboard_map()
 {
     Image depth(64, 64, 1);
     depth.fill(0, 0.75f);
-    for (int y = 24; y < 40; ++y)
-        for (int x = 24; x < 40; ++x)
+    for (int y = 24; y < 41; ++y)
+        for (int x = 24; x < 41; ++x)
             if ((x + y) % 2 == 0) depth.at(0, x, y) = 0.25f;
     return depth;
 }
@@ -187,21 +186,21 @@ PN_BACKEND_TEST(VssmTest, HandComputedCheckerboard)
     const VssmOptions o{0.25f, kDefaultMinVariance, 0.0f};
     // The reference agrees with the hand arithmetic.
     const VssmTrace by_hand = vssm_reference(depth, Precision::Float, o, 0.5, 0.5, 0.75);
-    ASSERT_EQ(by_hand.z_occ, 0.25);
-    ASSERT_EQ(by_hand.filter_half, 16.0);
-    ASSERT_EQ(by_hand.value, 0.875);
-    const VssmTrace quantized = vssm_reference(depth, Precision::Exact, o, 0.5, 0.5, 0.75);
-    ASSERT_NEAR(quantized.value, 0.875, 6e-5) << "the hand bound on the exact table's quantization";
+    ASSERT_NEAR(by_hand.z_occ, 0.25, 1e-14);
+    ASSERT_NEAR(by_hand.filter_half, 16.0, 1e-12);
+    ASSERT_NEAR(by_hand.value, kCheckerboardVisibility, 1e-12);
 
     for (Precision precision : {Precision::Float, Precision::Exact}) {
         const MomentTable table = build_moment_table(ctx, depth, 2, precision);
         const Image out = vssm(ctx, table, rx, o);
         for (int y = 0; y < rx.height(); ++y)
-            for (int x = 0; x < rx.width(); ++x) ASSERT_NEAR(out.at(0, x, y), 0.875, 1e-4) << to_string(precision);
+            for (int x = 0; x < rx.width(); ++x)
+                ASSERT_NEAR(out.at(0, x, y), kCheckerboardVisibility, 1e-4) << to_string(precision);
         const Expected e = vssm_expected(depth, precision, o, 0.5, 0.5, 0.75);
         EXPECT_NEAR(out.at(0, 0, 0), e.ref.value, e.tolerance) << to_string(precision);
         std::cout << "[ vssm ] " << backend << " checkerboard " << to_string(precision) << ": " << out.at(0, 0, 0)
-                  << " (7/8 - got = " << 0.875 - out.at(0, 0, 0) << ", reference " << e.ref.value << ")\n";
+                  << " (879/1024 - got = " << kCheckerboardVisibility - out.at(0, 0, 0) << ", reference "
+                  << e.ref.value << ")\n";
     }
 }
 
@@ -214,7 +213,7 @@ PN_BACKEND_TEST(VssmTest, FractionalWindowsMatchWeightedBruteForce)
     double worst = 0.0;
     for (Precision precision : {Precision::Float, Precision::Exact}) {
         const Image depth = testing::random_depth(29, 23, 5, precision == Precision::Float);
-        // Search half-widths 0.725, 1.595, 5.365 texels in x (0.575 .. 4.255 in y).
+        // Search radii 0, 1, 5 texels in x (0, 1, 4 in y); filter windows fractional.
         for (float light : {0.05f, 0.11f, 0.37f})
             for (VssmOptions o : {VssmOptions{0, kDefaultMinVariance, 0.0f}, VssmOptions{0, 1e-3f, 0.3f}}) {
                 o.light_size = light;
@@ -321,10 +320,11 @@ PN_BACKEND_TEST(VssmTest, DepthsExactlyZeroAndOneAndHugeLights)
 
 // The blocker estimate z_occ = (mean - p z) / (1 - p) goes negative when the
 // receiver sits just behind the mean of a mostly-far window: 32x32 at 1.0 with
-// a blocker at 0.5 on every 4th texel of every 4th row (1/16); search window
-// [8, 24)^2 (L = 0.5): mean = 1 - 1/32 = 0.96875, var = (1/16)(15/16)(1/4) =
-// 0.0146; z = mean + 0.005: p = 0.0146 / (0.0146 + 2.5e-5) = 0.9983,
-// z_occ = mean - p 0.005 / (1 - p) = -1.96. The kernel floors it at 1e-4 z:
+// a blocker at 0.5 on every 4th texel of every 4th row; search box [8, 25)^2
+// (L = 0.5: radius 8 around texel 16), 25 blockers of 289 (q = 0.0865):
+// mean = 1 - q/2 = 0.9567, var = q (1 - q) / 4 = 0.0198; z = 0.96875 + 0.005
+// = mean + 0.0170: p = 0.0198 / (0.0198 + 2.9e-4) = 0.9856,
+// z_occ = (mean - p z) / (1 - p) = -0.21. The kernel floors it at 1e-4 z:
 // the widest filter (clamped to the map), the Chebyshev bound over it.
 PN_BACKEND_TEST(VssmTest, NegativeBlockerEstimateGivesWidestFilter)
 {

@@ -72,13 +72,17 @@ std::string method_name(Method m)
 
 double tolerance(Method m) { return (m == Method::Msm || m == Method::MsmSoft) ? 1e-3 : 2e-4; }
 
-Box texel_window(int width, int height, float u, float v, int radius)
+Box texel_box(int width, int height, float u, float v, int rx, int ry)
 {
     // floor(u W) of the clamped float u, in double: exact (24 + 15 bits).
     const int tx = std::clamp(int(std::floor(double(std::clamp(u, 0.0f, 1.0f)) * width)), 0, width - 1);
     const int ty = std::clamp(int(std::floor(double(std::clamp(v, 0.0f, 1.0f)) * height)), 0, height - 1);
-    return {std::max(tx - radius, 0), std::min(tx + radius + 1, width), std::max(ty - radius, 0),
-            std::min(ty + radius + 1, height)};
+    return {std::max(tx - rx, 0), std::min(tx + rx + 1, width), std::max(ty - ry, 0), std::min(ty + ry + 1, height)};
+}
+
+Box texel_window(int width, int height, float u, float v, int radius)
+{
+    return texel_box(width, height, u, v, radius, radius);
 }
 
 Span clip_span(int width, int height, real cx, real cy, real half_x, real half_y)
@@ -526,10 +530,23 @@ Span float_span(const Image& depth, const Receiver64& r, float half_x, float hal
             real(std::clamp(cy - half_y, 0.0f, H)), real(std::clamp(cy + half_y, 0.0f, H))};
 }
 
+// The light's half-width in texels along an axis (float32, as the library's geometry).
+float search_half(int texels, const Params& p) { return std::max(p.light_size * 0.5f * float(texels), 0.5f); }
+
+// MSM-soft's first search: fractional, centred at (u W, v H).
 Span search_span(const Image& depth, const Receiver64& r, const Params& p)
 {
-    const auto half = [&](int texels) { return std::max(p.light_size * 0.5f * float(texels), 0.5f); };
-    return float_span(depth, r, half(depth.width()), half(depth.height()));
+    return float_span(depth, r, search_half(depth.width(), p), search_half(depth.height(), p));
+}
+
+// VSSM's search: the receiver's texel grown by R = floor(half-width) per axis,
+// clipped (kernels/vssm.h, docs/moments.md "VSSM's search window").
+Moments search_moments(Method m, const Image& depth, const Receiver64& r, const Params& p)
+{
+    if (m != Method::Vssm) return span_moments(depth, search_span(depth, r, p), identity, p);
+    const int rx = int(std::floor(search_half(depth.width(), p)));
+    const int ry = int(std::floor(search_half(depth.height(), p)));
+    return box_moments(depth, texel_box(depth.width(), depth.height(), float(r.u), float(r.v), rx, ry), identity, p);
 }
 
 // PCSS: w = L (z - z_occ) / z_occ, a half-width of w W / 2 texels in [0.5, max_radius + 0.5].
@@ -603,7 +620,7 @@ Answer soft_method(Method m, const Image& depth, Receiver rf, const Params& p, b
         r.z -= real(p.msm_depth_bias);  // z_f for the reconstruction
         r.geometry_z = rf.z - p.msm_depth_bias;
     }
-    const Moments search = span_moments(depth, search_span(depth, r, p), identity, p);
+    const Moments search = search_moments(m, depth, r, p);
     const auto answer_from = [&](const Moments& s, unsigned filter_signs, bool perturb_filter) {
         const std::optional<Span> span = refined_filter_span(m, depth, s, r, p);
         if (!span) return real(1);

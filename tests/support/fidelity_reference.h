@@ -8,9 +8,11 @@
 //
 // Window contract (as `penumbra shade`): box methods take the (2r+1)^2 block
 // centred on the texel containing (u, v), u and v clamped into [0, 1] and the
-// texel clamped into the map, clipped to the map. VSSM and MSM-soft take
-// fractional windows centred at (u W, v H) whose texels are weighted by
-// their overlap (the exact integral of the piecewise-constant map); their
+// texel clamped into the map, clipped to the map, and so does VSSM's blocker
+// search, with the radius floor(max(L W / 2, 1/2)) per axis. VSSM's filter
+// window and both MSM-soft windows are fractional, centred at (u W, v H),
+// their texels weighted by their overlap (the exact integral of the
+// piecewise-constant map); their
 // geometry (centre, half-widths, corners, the blocker depth the filter width
 // is computed from) is float32 as in the library, their arithmetic long double.
 //
@@ -100,6 +102,8 @@ struct Box {
     int x0, x1, y0, y1;
 };
 Box texel_window(int width, int height, float u, float v, int radius);
+// The same grown by rx columns and ry rows (VSSM's search box).
+Box texel_box(int width, int height, float u, float v, int rx, int ry);
 
 // A fractional window in texel coordinates (exclusive corners), clipped.
 struct Span {
