@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <tuple>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -112,7 +113,7 @@ template <KernelId K>
 LookupRun lookup_case(const Sources& s)
 {
     using Params = typename detail::KernelTraits<K>::Params;
-    constexpr bool exact = std::is_same_v<detail::LookupSourceOf<K>, std::uint32_t>;
+    constexpr bool exact = std::is_same_v<detail::LookupSourcesOf<K>, std::tuple<std::uint32_t>>;
     const std::string_view name = detail::kernel_name(K);
     const bool direct = name.ends_with("_direct");
     if constexpr (std::is_same_v<Params, ChebyshevParams>) {
