@@ -26,7 +26,7 @@
 #define PENUMBRA_KERNEL_TABLE_H
 
 /* The families, each an OpenCL program of its own. */
-#define PN_KERNEL_FAMILIES(F) F(moment_table) F(chebyshev) F(bilateral) F(sdf) F(moments) F(pcf)
+#define PN_KERNEL_FAMILIES(F) F(moment_table) F(chebyshev) F(bilateral) F(sdf) F(moments) F(pcf) F(dsm)
 
 #define PN_KERNEL_TABLE(X)                                                                                  \
     X(moment_table, sat_bands_float, task, SatParams,                                                    \
@@ -64,6 +64,8 @@
     X(pcf, pcf_gauss, pixel, PcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
     X(pcf, pcf_disc, pixel, PcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
     X(pcf, pcss, pixel, SoftPcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))              \
-    X(pcf, burley, pixel, SoftPcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
+    X(pcf, burley, pixel, SoftPcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))            \
+    X(dsm, dsm_lookup, pixel, DsmParams,                                                                   \
+      (PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
 
 #endif
