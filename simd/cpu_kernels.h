@@ -78,6 +78,11 @@ struct CpuKernels {
     void (*dialect_double_probe)(const float* f, const u32* u, double* d, float* g, u32* v);
     // pn_ugather_pair on one strip: first[i] = table[index[i]], second[i] = table[index[i] + 1].
     void (*dialect_gather_pair_probe)(const u32* table, const int* index, u32* first, u32* second);
+    // The index lanes on one strip: less[i] = (int(a[i]) < int(b[i])) as a
+    // float mask ? 1 : 0 (pn_iless combined with a float condition),
+    // selected[i] = that ? a[i] : b[i] (pn_iselect), a and b read as
+    // pn_uint_to_index of uint lanes.
+    void (*dialect_index_probe)(const u32* a, const u32* b, float* less, int* selected);
 };
 
 // The member of CpuKernels that holds entry K: kernels.*CpuEntryMember<K>::pointer.
