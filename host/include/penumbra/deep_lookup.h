@@ -21,7 +21,7 @@ namespace penumbra {
 // pixels (r = 0 is bilinear). Both clip to the map and renormalise.
 enum class DeepFilter { Box, Tent };
 // How a pixel's vertices are searched for z: one result, two speeds.
-// Linear is the default: measured faster on both backends on dsm-build maps
+// Linear is the default: measured faster on SIMD (level on PoCL) on dsm-build maps
 // (docs/deep_shadow_maps.md, "Lookup").
 enum class DeepSearch { Binary, Linear };
 
