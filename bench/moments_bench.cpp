@@ -3,7 +3,8 @@
 // backend and ISA, 1 and 2 threads (tbb::task_arena), in the same run so that
 // SIMD / scalar and SIMD / OpenCL are ratios of one run
 // (bench/moments_ratios.py prints them; docs/moments.md has the command and
-// the figures). A method added to the table is benchmarked here with no edit.
+// the figures). A method added to the table is benchmarked here with no edit
+// (one that reads a deep shadow map, MethodInput::DeepMap, in bench/dsm_bench.cpp).
 //
 // Cases, named as penumbra_bench's `op/key:value/.../threads:n`:
 //  - the shade step (Method::shade into an output allocated once; the
@@ -42,6 +43,7 @@
 #include <vector>
 
 #include "bench_inputs.h"
+#include "timed_loop.h"
 #include "penumbra/methods.h"
 
 namespace penumbra::bench {
@@ -101,22 +103,7 @@ const PreparedMap& prepared(const Method& m, const Storage& s, const MethodSetti
 template <class Fn>
 void timed(benchmark::State& state, const std::string& backend, int threads, Fn&& call)
 {
-    try {
-        Context& ctx = context(backend);
-        state.SetLabel(ctx.description());
-        auto loop = [&] {
-            call(ctx);  // untimed: PoCL's first launch, page faults
-            for (auto _ : state) {
-                call(ctx);
-                benchmark::ClobberMemory();
-            }
-        };
-        if (threads > 0) tbb::task_arena(threads).execute(loop);
-        else loop();
-    } catch (const std::exception& e) {
-        state.SkipWithError(e.what());
-        return;
-    }
+    if (!timed_loop(state, backend, threads, call)) return;
     const double n = double(state.iterations());
     state.counters["pixels/s"] = benchmark::Counter(double(kSize) * kSize * n, benchmark::Counter::kIsRate);
 }
@@ -190,6 +177,7 @@ void register_on_backends(const std::string& op, const Storage& s, Run run)
     std::vector<const void*> timed_builds;
     for (const Method& m : methods()) {
         if (m.prepare == vsm.prepare || m.prepare == vssm.prepare) continue;  // bench/penumbra_bench.cpp's cases
+        if (m.input != MethodInput::ShadowMap) continue;  // a deep map's lookups: bench/dsm_bench.cpp
         for (const Storage* s : storages_of(m))
             for (const auto& [op, radius] : shade_ops(m, *s)) {
                 const MethodSettings settings = settings_for(*s, radius);

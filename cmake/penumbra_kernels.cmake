@@ -31,6 +31,7 @@ set(PENUMBRA_KERNEL_FILES
   kernels/burley.h
   kernels/ambient_volumes.h
   kernels/ambient_sh.h
+  kernels/dsm_lookup.h
 )
 
 set(_gen ${CMAKE_CURRENT_BINARY_DIR}/generated)
@@ -65,6 +66,7 @@ set(PENUMBRA_CL_FAMILY_FILES_moments
 set(PENUMBRA_CL_FAMILY_FILES_pcf kernels/receiver_slope.h kernels/depth_bias.h kernels/pcf.h kernels/pcf_gauss.h kernels/pcf_disc.h
     kernels/hammersley.h kernels/pcss.h kernels/burley.h)
 set(PENUMBRA_CL_FAMILY_FILES_ambient kernels/ambient_volumes.h kernels/ambient_sh.h)
+set(PENUMBRA_CL_FAMILY_FILES_dsm kernels/receiver_slope.h kernels/dsm_lookup.h)
 
 set(_table ${CMAKE_CURRENT_SOURCE_DIR}/kernels/kernel_table.h)
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_table})  # a new family reconfigures

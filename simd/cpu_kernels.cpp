@@ -47,11 +47,11 @@ static void sat_block_exact_fenced(const float* depth, u32* table, u32* carry, u
     sat_block_exact(depth, table, carry, columns, column_row, bad_rows, p, x0, x1, y0, y1);
     _mm_sfence();
 }
-// The probes' index lanes, loaded as uint and reinterpreted.
+// The probes' int lanes stored as they are.
 #if defined(PN_ISA_scalar)
-static pn_int pn_uint_to_int_lanes(pn_uint v) { return pn_int(v); }
+static void probe_store_int(int* out, pn_int v) { *out = v; }
 #else
-static pn_int pn_uint_to_int_lanes(pn_uint v) { return xsimd::bitwise_cast<pn_int>(v); }
+static void probe_store_int(int* out, pn_int v) { v.store_unaligned(out); }
 #endif
 
 // One strip of the double lanes (simd/cpu_kernels.h, dialect_double_probe).
@@ -83,7 +83,7 @@ static void dialect_gather_pair_probe(const u32* table, const int* index, u32* f
 {
     const pn_dims dims{kLanes, 1, kLanes, kLanes};
     pn_uint a, b;
-    pn_ugather_pair(table, pn_uint_to_int_lanes(pn_uload(reinterpret_cast<const u32*>(index), dims, 0, 0)), &a, &b);
+    pn_ugather_pair(table, pn_uint_to_index(pn_uload(reinterpret_cast<const u32*>(index), dims, 0, 0)), &a, &b);
     pn_ustore(first, dims, 0, 0, a);
     pn_ustore(second, dims, 0, 0, b);
 }
@@ -94,6 +94,16 @@ static void dialect_upair_probe(const u32* table, const int* index_a, const int*
         return pn_uint_to_int_lanes(pn_uload(reinterpret_cast<const u32*>(index), dims, 0, 0));
     };
     probe_store(joined, pn_upair_join(pn_ugather_upair(table, lanes(index_a)) - pn_ugather_upair(table, lanes(index_b))));
+}
+
+// The index lanes (simd/cpu_kernels.h, dialect_index_probe).
+static void dialect_index_probe(const u32* a, const u32* b, float* less, int* selected)
+{
+    const pn_dims dims{kLanes, 1, kLanes, kLanes};
+    const pn_int ia = pn_uint_to_index(pn_uload(a, dims, 0, 0)), ib = pn_uint_to_index(pn_uload(b, dims, 0, 0));
+    const pn_mask m = pn_iless(ia, ib);
+    pn_store(less, dims, 0, 0, pn_select(pn_and(m, pn_float(1.0f) > 0.0f), 1.0f, 0.0f));
+    probe_store_int(selected, pn_iselect(m, ia, ib));
 }
 }  // namespace penumbra::cpu::PN_ISA_NAMESPACE
 
@@ -116,6 +126,7 @@ static constexpr CpuKernels make_table()
     t.dialect_double_probe = &isa::dialect_double_probe;
     t.dialect_gather_pair_probe = &isa::dialect_gather_pair_probe;
     t.dialect_upair_probe = &isa::dialect_upair_probe;
+    t.dialect_index_probe = &isa::dialect_index_probe;
     return t;
 }
 

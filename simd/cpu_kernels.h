@@ -81,6 +81,11 @@ struct CpuKernels {
     // pn_upair on one strip: joined[i] = pn_upair_join(gather(index_a[i]) - gather(index_b[i])), the
     // difference of (table[a], table[a + 1]) and (table[b], table[b + 1]), each part wrapping, joined.
     void (*dialect_upair_probe)(const u32* table, const int* index_a, const int* index_b, double* joined);
+    // The index lanes on one strip: less[i] = (int(a[i]) < int(b[i])) as a
+    // float mask ? 1 : 0 (pn_iless combined with a float condition),
+    // selected[i] = that ? a[i] : b[i] (pn_iselect), a and b read as
+    // pn_uint_to_index of uint lanes.
+    void (*dialect_index_probe)(const u32* a, const u32* b, float* less, int* selected);
 };
 
 // The member of CpuKernels that holds entry K: kernels.*CpuEntryMember<K>::pointer.

@@ -79,7 +79,7 @@ TEST(KernelTable, EveryEntryAndHelperIsSetInEveryCpuTable)
              {(const void*)table.sat_block_float, (const void*)table.sat_block_exact,
               (const void*)table.bilateral_full_span, (const void*)table.bilateral_horizontal_span,
               (const void*)table.bilateral_vertical_span, (const void*)table.dialect_double_probe,
-              (const void*)table.dialect_gather_pair_probe})
+              (const void*)table.dialect_gather_pair_probe, (const void*)table.dialect_index_probe})
             EXPECT_NE(helper, nullptr) << isa;
     }
 }
@@ -157,6 +157,32 @@ TEST(DialectUpair, WrappingDifferencesJoinExactlyOnEveryCpuBinding)
         for (int i = 0; i < n; ++i) {
             const cpu::u32 first = table[a[i]] - table[b[i]], second = table[a[i] + 1] - table[b[i] + 1];
             EXPECT_EQ(joined[i], double(first) * 65536.0 + double(second)) << isa << " lane " << i;
+        }
+    }
+}
+
+// The dialect's index lanes (kernels/dialect.h: pn_iless, pn_iselect,
+// pn_uint_to_index) on every CPU binding: signed compares across the lanes,
+// equal values, negative ints from uints at and above 2^31. (OpenCL's binding
+// is plain int; the deep map lookup's tests cover it on every backend.)
+TEST(DialectIndex, ComparesAndSelectsIntLanesOnEveryCpuBinding)
+{
+    for (const std::string& isa : cpu_tables()) {
+        const cpu::CpuKernels& t = cpu::kernels_for(isa);
+        const int n = t.lanes;
+        std::vector<cpu::u32> a(n), b(n);
+        for (int i = 0; i < n; ++i) {
+            a[i] = cpu::u32(i * 7919 % 23);
+            b[i] = i % 3 == 0 ? a[i] : cpu::u32(i * 104729 % 29);
+            if (i % 5 == 4) a[i] = 0x80000000u + cpu::u32(i);  // negative as an index
+        }
+        std::vector<float> less(n);
+        std::vector<int> selected(n);
+        t.dialect_index_probe(a.data(), b.data(), less.data(), selected.data());
+        for (int i = 0; i < n; ++i) {
+            const int ia = int(a[i]), ib = int(b[i]);
+            EXPECT_EQ(less[i], ia < ib ? 1.0f : 0.0f) << isa << " lane " << i;
+            EXPECT_EQ(selected[i], ia < ib ? ia : ib) << isa << " lane " << i;
         }
     }
 }

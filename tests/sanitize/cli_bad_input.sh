@@ -22,6 +22,7 @@ cd "$work"
 "$cli" render-scene contact --shadow-map ok/sm.exr --receivers ok/rx.exr --truth ok/gt.exr \
   --map-size 64 --view-size 16x12 --samples 4 >/dev/null
 "$cli" sdf-bake --scene fence --out ok/fence.pnsdf --voxel 0.5 >/dev/null
+"$cli" dsm-build --scene layers --out ok/dsm.exr --size 16 --samples 4 >/dev/null
 mkdir -p bad
 : >bad/empty.exr
 head -c 1000 ok/shadow_map.exr >bad/truncated.exr
@@ -56,6 +57,11 @@ runs=(
   "shade --method evsm4 --shadow-map $sm --receivers $rx --out o.exr --exponents 99,x"
   "shade --method msm --shadow-map $sm --receivers $rx --out /nonexistent/o.exr"
   "shade --method bogus --shadow-map $sm --receivers $rx --out o.exr"
+  "shade --method dsm --deep-map $sm --receivers $rx --out o.exr"
+  "shade --method dsm --deep-map bad/truncated.exr --receivers $rx --out o.exr"
+  "shade --method dsm --deep-map bad/flipped.exr --receivers $rx --out o.exr"
+  "shade --method dsm --deep-map ok/dsm.exr --receivers bad/flipped.exr --out o.exr --filter tent --radius 2"
+  "shade --method dsm --shadow-map $sm --receivers $rx --out o.exr"
   "blur --in $sm --guide bad/truncated.exr --out o.exr"
   "blur --in $sm --guide $rx --out o.exr --radius 100000"
   "sdf-shade --grid bad/wrap.pnsdf --receivers ok/rx.exr --out o.exr --k 2 --light-direction 0,1,0"
