@@ -94,6 +94,26 @@ std::vector<double> parse_budgets(const std::string& text)
     return budgets;
 }
 
+// --scene: scene names and the sets `opaque` (the five shadow-map scenes),
+// `deep` (hair, fog, layers) and `all` (the default: both), in order, each once.
+std::vector<std::string> scene_list(const std::string& text)
+{
+    const std::pair<const char*, reference::SceneSet> sets[] = {
+        {"opaque", reference::SceneSet::Opaque}, {"deep", reference::SceneSet::Deep}, {"all", reference::SceneSet::All}};
+    std::vector<std::string> scenes;
+    auto add = [&](const std::string& name) {
+        if (std::find(scenes.begin(), scenes.end(), name) == scenes.end()) scenes.push_back(name);
+    };
+    for (const std::string& item : split_list(text)) {
+        const auto set = std::find_if(std::begin(sets), std::end(sets), [&](const auto& s) { return item == s.first; });
+        if (set == std::end(sets)) add(item);
+        else
+            for (const std::string& name : reference::builtin_scene_names(set->second)) add(name);
+    }
+    if (scenes.empty()) throw UsageError{"option --scene: give scene names or opaque, deep, all"};
+    return scenes;
+}
+
 DemoOptions parse_options(const std::vector<std::string>& argv)
 {
     const Args args(argv,
@@ -114,8 +134,7 @@ DemoOptions parse_options(const std::vector<std::string>& argv)
     } catch (const Error& e) {
         throw UsageError{e.what()};
     }
-    o.scenes = split_list(args.text("--scene", ""));
-    if (o.scenes.empty()) o.scenes = reference::builtin_scene_names();
+    o.scenes = scene_list(args.text("--scene", "all"));
     o.methods = split_list(args.text("--method", ""));
     o.map_size = args.integer("--map-size", 0);
     if (o.map_size < 0 || o.map_size > 16384) throw UsageError{"option --map-size: must be in [1, 16384]"};
@@ -359,6 +378,12 @@ constexpr const char* kQuickCaveat =
     "0.024-0.038 in the full run. The classic sdf rows share one over-darkening: it comes from the grid's surfaces "
     "(a hit is 0 whatever k), and p99 1.0 from leaks through poles thinner than a voxel.";
 
+// The rule for point lights (the deep scenes), said where the rows are read.
+constexpr const char* kPointLightNote =
+    "Under a point light (hair, fog, layers) the truth is exact, one ray per receiver, so its noise is 0; the soft "
+    "methods, which need a light size, are sized for a square light whose penumbra is one texel of the map "
+    "(docs/deep_shadow_maps.md).";
+
 bool wanted(const std::vector<std::string>& list, const std::string& name)
 {
     return list.empty() || std::find(list.begin(), list.end(), name) != list.end();
@@ -458,6 +483,10 @@ std::string protocol_text(const DemoOptions& o)
                        std::to_string(o.strata * o.strata) + " rays per receiver, " + std::to_string(o.frames) +
                        " frames for flicker; timed on " + frame_text(o.frame) + " receivers, medians of " +
                        std::to_string(o.repetitions) + " interleaved repetitions after a warm-up.";
+    if (std::any_of(o.scenes.begin(), o.scenes.end(), [](const std::string& name) {
+            return reference::builtin_scene(name).light.shape == reference::LightShape::Point;
+        }))
+        text.append(" ").append(kPointLightNote);
     if (o.quick) text.append(" ").append(kQuickCaveat);
     return text;
 }
@@ -490,12 +519,14 @@ void write_outputs(Context& ctx, const DemoOptions& o, DemoResults& results)
 int demo_command(const std::vector<std::string>& argv)
 {
     if (!argv.empty() && argv[0] == "--help") {
-        std::cout << "usage: penumbra demo [--quick] [--out DIR] [--backend B] [--scene a,b] [--method a,b]\n"
+        std::cout << "usage: penumbra demo [--quick] [--out DIR] [--backend B] [--scene a,b|SET] [--method a,b]\n"
                      "                     [--map-size N] [--view-size WxH] [--samples S] [--frames K]\n"
                      "                     [--frame WxH] [--repetitions N] [--budgets MS,MS,...]\n"
                      "  every method with a sweep of its settings on every built-in scene, against the\n"
                      "  ray-traced ground truth: DIR/index.html (the report), DIR/results.csv,\n"
                      "  DIR/chart.png, DIR/<scene>/*.png|exr\n"
+                     "  --scene: names, or a SET: opaque (the five shadow-map scenes), deep (hair,\n"
+                     "  fog, layers: point lights, exact truth) and all (the default)\n"
                      "  scored on --view-size receivers (default 320x240, 576 rays each, 3 frames for\n"
                      "  flicker); timed on --frame receivers (default 1920x1080): the map's and the\n"
                      "  receivers' work apart, medians of --repetitions (default 5, at least 5)\n"
