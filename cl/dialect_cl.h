@@ -61,6 +61,9 @@ PN_FN int pn_to_int(float v) { return (int)v; }
 PN_FN float pn_int_to_float(int v) { return (float)v; }
 PN_FN float pn_uint_to_float(uint v) { return (float)v; }
 PN_FN uint pn_float_to_uint(float v) { return (uint)(int)v; }
+PN_FN int pn_iless(int a, int b) { return a < b; }
+PN_FN int pn_iselect(int m, int a, int b) { return m ? a : b; }
+PN_FN int pn_uint_to_index(uint u) { return (int)u; }
 PN_FN uint pn_ushr(uint v, int n) { return v >> n; }
 PN_FN uint pn_ushl(uint v, int n) { return v << n; }
 PN_FN uint pn_as_uint(float v) { return as_uint(v); }

@@ -1,9 +1,12 @@
 // OpenCL launch of every lookup-shaped entry of the kernel table (VSM, VSSM,
-// MSM, moment soft shadows, EVSM, and any entry of the same shape added
-// later): one work-item per receiver through launch<K>, the run-time KernelId
-// made compile-time by the table's one switch (detail::visit_lookup). No
-// method is named here: a new lookup-shaped entry runs with no edit of this file.
+// MSM, moment soft shadows, EVSM, the deep shadow map lookup, and any entry
+// of the same shape added later): one work-item per receiver through
+// launch<K>, the run-time KernelId made compile-time by the table's one
+// switch (detail::visit_lookup). No method is named here: a new
+// lookup-shaped entry runs with no edit of this file.
+#include <tuple>
 #include <type_traits>
+#include <utility>
 
 #include "cl/opencl_backend.h"
 
@@ -28,6 +31,35 @@ TableBuffers<const T*> source_input(const cl::Context& context, const detail::Lo
     return table_input<T>(context, *source.table());
 }
 
+// Array `I` of a source of several, in host memory (OpenCL has no empty
+// buffer: an empty array is one zero, which a valid entry never reads).
+template <class T>
+Input<T> array_input(const cl::Context& context, const detail::LookupSource& source, KernelId kernel,
+                     std::size_t index, std::size_t count)
+{
+    const T* data = source.array<T>(kernel, index, count);
+    const std::size_t elements = source.arrays()[index].count();
+    return elements == 0 ? as_input(zeros<T>(context, 1)) : read_only(context, data, elements);
+}
+
+// Entry K's source buffers, in its argument order, and what keeps them alive.
+template <KernelId K>
+auto source_inputs(const cl::Context& context, const detail::LookupSource& source)
+{
+    using Sources = detail::LookupSourcesOf<K>;
+    constexpr std::size_t n = std::tuple_size_v<Sources>;
+    if constexpr (n == 1) {
+        TableBuffers<const std::tuple_element_t<0, Sources>*> one =
+            source_input<std::tuple_element_t<0, Sources>>(context, source, K);
+        return std::pair{one.storage, std::tuple{one.origin}};
+    } else {
+        return [&]<std::size_t... I>(std::index_sequence<I...>) {
+            return std::pair{cl::Buffer(),
+                             std::tuple{array_input<std::tuple_element_t<I, Sources>>(context, source, K, I, n)...}};
+        }(std::make_index_sequence<n>{});
+    }
+}
+
 }  // namespace
 
 void OpenClBackend::receiver_lookup(KernelId kernel, const detail::LookupSource& source, const Image& receivers,
@@ -36,11 +68,15 @@ void OpenClBackend::receiver_lookup(KernelId kernel, const detail::LookupSource&
     detail::visit_lookup(kernel, params, [&](auto k, const auto& p) {
         constexpr KernelId K = decltype(k)::value;
         translate_cl_errors([&] {
-            const auto input = source_input<detail::LookupSourceOf<K>>(context(), source, K);
+            const auto inputs = source_inputs<K>(context(), source);
             const Output<float> result = image_output(context(), out);
             const Output<int> flags = row_flags(context(), bad_rows, receivers.height());
-            launch<K>(Pixels{out.width(), out.height()}, input.origin, image_input(context(), receivers), result,
-                      flags, p);
+            std::apply(
+                [&](const auto&... buffers) {
+                    launch<K>(Pixels{out.width(), out.height()}, buffers..., image_input(context(), receivers),
+                              result, flags, p);
+                },
+                inputs.second);
             sync_to_host(queue(), result);
             sync_to_host(queue(), flags);
         });

@@ -28,6 +28,7 @@ set(PENUMBRA_KERNEL_FILES
   kernels/hammersley.h
   kernels/pcss.h
   kernels/burley.h
+  kernels/dsm_lookup.h
 )
 
 set(_gen ${CMAKE_CURRENT_BINARY_DIR}/generated)
@@ -61,6 +62,7 @@ set(PENUMBRA_CL_FAMILY_FILES_moments
   kernels/exponential_warp.h kernels/encoded_table.h kernels/evsm.h kernels/msm.h kernels/msm_soft.h)
 set(PENUMBRA_CL_FAMILY_FILES_pcf kernels/depth_bias.h kernels/pcf.h kernels/pcf_gauss.h kernels/pcf_disc.h
     kernels/hammersley.h kernels/pcss.h kernels/burley.h)
+set(PENUMBRA_CL_FAMILY_FILES_dsm kernels/depth_bias.h kernels/dsm_lookup.h)
 
 set(_table ${CMAKE_CURRENT_SOURCE_DIR}/kernels/kernel_table.h)
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_table})  # a new family reconfigures

@@ -35,6 +35,10 @@
  *   pn_ushl(u, n) shift left by a uniform count (wrapping, as all unsigned
  *   arithmetic); pn_as_uint(f) and pn_as_float(u) reinterpret the 32 bits of
  *   a lane (OpenCL's as_uint / as_float), for exponent-field arithmetic.
+ *   Integer lanes as indices (a search through per-pixel arrays):
+ *   pn_iless(a, b) the lanes where a < b (a pn_mask, so it combines with float
+ *   conditions); pn_iselect(mask, a, b) per lane; pn_uint_to_index(u) a uint
+ *   lane as an int index (u < 2^31: the same value).
  *
  * Double lanes (per-window moments formed before any float32 step; docs/dialect.md)
  *   pn_double, pn_dmask         per-pixel double and its condition; a pn_double

@@ -8,8 +8,11 @@
  *  - shape:  pixel (its last arguments are Params p, then the pixel x, y)
  *            or task (Params p, then the task index);
  *  - buffers, in argument order: PN_IN(T) (read), PN_OUT(T) (written),
- *    PN_INOUT(T) (read and written), T one of float, uint, int; a consumer
- *    defines PN_IN, PN_OUT and PN_INOUT before it expands the table.
+ *    PN_INOUT(T) (read and written), PN_SOURCE(T) (read: the source of a
+ *    lookup-shaped entry, one buffer or several arrays, before its
+ *    receivers; host/backend/kernel_id.h), T one of float, uint, int; a
+ *    consumer defines PN_IN, PN_OUT, PN_INOUT and PN_SOURCE before it
+ *    expands the table.
  *
  * From this list and from nothing else come the CPU function tables of every
  * ISA (simd/), the OpenCL kernel objects and their argument binding (cl/) and
@@ -23,7 +26,7 @@
 #define PENUMBRA_KERNEL_TABLE_H
 
 /* The families, each an OpenCL program of its own. */
-#define PN_KERNEL_FAMILIES(F) F(moment_table) F(chebyshev) F(bilateral) F(sdf) F(moments) F(pcf)
+#define PN_KERNEL_FAMILIES(F) F(moment_table) F(chebyshev) F(bilateral) F(sdf) F(moments) F(pcf) F(dsm)
 
 #define PN_KERNEL_TABLE(X)                                                                                  \
     X(moment_table, sat_bands_float, task, SatParams,                                                    \
@@ -32,12 +35,12 @@
       (PN_IN(float), PN_OUT(uint), PN_OUT(uint), PN_OUT(uint), PN_OUT(int)))                                \
     X(moment_table, sat_join_bands_float, pixel, SatParams, (PN_INOUT(float), PN_IN(float)))             \
     X(moment_table, sat_join_bands_exact, pixel, SatParams, (PN_INOUT(uint), PN_IN(uint)))               \
-    X(chebyshev, vsm_float, pixel, ChebyshevParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
-    X(chebyshev, vsm_exact, pixel, ChebyshevParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))  \
-    X(chebyshev, vsm_direct, pixel, ChebyshevParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
+    X(chebyshev, vsm_float, pixel, ChebyshevParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
+    X(chebyshev, vsm_exact, pixel, ChebyshevParams, (PN_SOURCE(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))  \
+    X(chebyshev, vsm_direct, pixel, ChebyshevParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
     X(chebyshev, vssm_float, pixel, ChebyshevParams,                                                     \
-      (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))                                             \
-    X(chebyshev, vssm_exact, pixel, ChebyshevParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
+      (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))                                             \
+    X(chebyshev, vssm_exact, pixel, ChebyshevParams, (PN_SOURCE(uint), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
     X(bilateral, bilateral_full, pixel, BilateralParams,                                                 \
       (PN_IN(float), PN_IN(float), PN_IN(float), PN_IN(int), PN_IN(float), PN_OUT(float), PN_OUT(int)))     \
     X(bilateral, bilateral_horizontal, pixel, BilateralParams,                                           \
@@ -48,19 +51,21 @@
     X(sdf, sdf_analytic, pixel, SdfParams, (PN_IN(float), PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
     X(moments, encoded_bands_float, task, EncodedSatParams, (PN_IN(float), PN_OUT(float), PN_OUT(float), PN_OUT(int))) \
     X(moments, encoded_bands_exact, task, EncodedSatParams, (PN_IN(float), PN_OUT(uint), PN_OUT(uint), PN_OUT(int)))   \
-    X(moments, msm_float, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))       \
-    X(moments, msm_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))        \
-    X(moments, msm_direct, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
-    X(moments, msm_soft_float, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))  \
-    X(moments, msm_soft_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))   \
-    X(moments, evsm_float, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
-    X(moments, evsm_exact, pixel, MomentParams, (PN_IN(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
-    X(moments, evsm_direct, pixel, MomentParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))     \
-    X(pcf, pcf, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))                   \
-    X(pcf, pcf_gather, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))            \
-    X(pcf, pcf_gauss, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
-    X(pcf, pcf_disc, pixel, PcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
-    X(pcf, pcss, pixel, SoftPcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))              \
-    X(pcf, burley, pixel, SoftPcfParams, (PN_IN(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
+    X(moments, msm_float, pixel, MomentParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))       \
+    X(moments, msm_exact, pixel, MomentParams, (PN_SOURCE(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))        \
+    X(moments, msm_direct, pixel, MomentParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
+    X(moments, msm_soft_float, pixel, MomentParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))  \
+    X(moments, msm_soft_exact, pixel, MomentParams, (PN_SOURCE(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))   \
+    X(moments, evsm_float, pixel, MomentParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
+    X(moments, evsm_exact, pixel, MomentParams, (PN_SOURCE(uint), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
+    X(moments, evsm_direct, pixel, MomentParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))     \
+    X(pcf, pcf, pixel, PcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))                   \
+    X(pcf, pcf_gather, pixel, PcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))            \
+    X(pcf, pcf_gauss, pixel, PcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
+    X(pcf, pcf_disc, pixel, PcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
+    X(pcf, pcss, pixel, SoftPcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))              \
+    X(pcf, burley, pixel, SoftPcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))            \
+    X(dsm, dsm_lookup, pixel, DsmParams,                                                                   \
+      (PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
 
 #endif

@@ -205,6 +205,26 @@ typedef struct {
     float falloff;       /* burley: opacity falloff distance in depth units; 0 = off */
 } SoftPcfParams;
 
+/* Deep shadow map lookups (kernels/dsm_lookup.h): the map is three arrays
+ * (penumbra/deep_shadow_map.h): offsets (uint, width*height + 1), depths and
+ * transmittances (float, one per vertex). */
+#define PN_DSM_BOX 0    /* (2r+1)^2 pixels around the receiver's, equal weights */
+#define PN_DSM_TENT 1   /* (2r+2)^2 pixels, bilinear weights of half-width r + 1 */
+#define PN_DSM_BINARY 0 /* each pixel's vertices searched by bisection */
+#define PN_DSM_LINEAR 1 /* ... front to back */
+typedef struct {
+    pn_dims map;       /* the deep map's pixels (width, height; the arrays are packed) */
+    pn_dims receivers; /* planes u, v, z */
+    pn_dims out;       /* one plane: visibility */
+    int filter;        /* PN_DSM_BOX or PN_DSM_TENT */
+    int radius;        /* texels, >= 0 */
+    int search;        /* PN_DSM_BINARY or PN_DSM_LINEAR */
+    int search_top;    /* binary: the largest power of two <= the most vertices of one pixel (0 if none) */
+    int vertices;      /* vertices of the map (< 2^30) */
+    int last_vertex;   /* max(vertices - 1, 0): the arrays hold at least one element each */
+    float bias;        /* subtracted from the receiver's depth */
+} DsmParams;
+
 #ifdef __cplusplus
 }  /* namespace penumbra */
 #endif

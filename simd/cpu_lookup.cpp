@@ -1,8 +1,12 @@
 // CPU launch of every lookup-shaped entry of the kernel table (VSM, VSSM,
-// MSM, moment soft shadows, EVSM, and any entry of the same shape added
-// later): one launch_pixels<K> per receiver strip, the run-time KernelId made
-// compile-time by the table's one switch (detail::visit_lookup). No method is
-// named here: a new lookup-shaped entry runs with no edit of this file.
+// MSM, moment soft shadows, EVSM, the deep shadow map lookup, and any entry
+// of the same shape added later): one launch_pixels<K> per receiver strip,
+// the run-time KernelId made compile-time by the table's one switch
+// (detail::visit_lookup), the source's buffers (one, or several arrays) in
+// the entry's order (detail::source_buffers). No method is named here: a new
+// lookup-shaped entry runs with no edit of this file.
+#include <tuple>
+
 #include "simd/cpu_backend.h"
 #include "simd/cpu_schedule.h"
 
@@ -13,8 +17,12 @@ void CpuBackend::receiver_lookup(KernelId kernel, const detail::LookupSource& so
 {
     detail::visit_lookup(kernel, params, [&](auto k, const auto& p) {
         constexpr KernelId K = decltype(k)::value;
-        const auto* origin = source.origin<detail::LookupSourceOf<K>>(K);
-        launch_pixels<K>(kernels_, out.width(), out.height(), origin, receivers.plane(0), out.plane(0), bad_rows, p);
+        std::apply(
+            [&](const auto*... sources) {
+                launch_pixels<K>(kernels_, out.width(), out.height(), sources..., receivers.plane(0), out.plane(0),
+                                 bad_rows, p);
+            },
+            detail::source_buffers<K>(source));
     });
 }
 

@@ -48,6 +48,9 @@ PN_FN std::int32_t pn_to_int(float v)
 PN_FN float pn_int_to_float(std::int32_t v) { return static_cast<float>(v); }
 PN_FN float pn_uint_to_float(std::uint32_t v) { return static_cast<float>(v); }
 PN_FN std::uint32_t pn_float_to_uint(float v) { return static_cast<std::uint32_t>(pn_to_int(v)); }
+PN_FN bool pn_iless(std::int32_t a, std::int32_t b) { return a < b; }
+PN_FN std::int32_t pn_iselect(bool m, std::int32_t a, std::int32_t b) { return m ? a : b; }
+PN_FN std::int32_t pn_uint_to_index(std::uint32_t u) { return static_cast<std::int32_t>(u); }
 PN_FN std::uint32_t pn_ushr(std::uint32_t v, int n) { return v >> n; }
 PN_FN std::uint32_t pn_ushl(std::uint32_t v, int n) { return v << n; }
 PN_FN std::uint32_t pn_as_uint(float v)

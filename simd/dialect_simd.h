@@ -70,6 +70,26 @@ PN_FN pn_float pn_uint_to_float(pn_uint v)
     return pn_int_to_float(high) * 65536.0f + pn_int_to_float(low);
 }
 PN_FN pn_uint pn_float_to_uint(pn_float v) { return xsimd::bitwise_cast<pn_uint>(pn_to_int(v)); }
+// Integer lanes as indices (kernels/dialect.h). The compare yields the float
+// lanes' mask: on AVX-512 both are the same 16-bit mask register, before it
+// the same all-ones lanes in a vector register.
+PN_FN pn_mask pn_iless(pn_int a, pn_int b)
+{
+#if defined(PN_ISA_avx512)
+    return pn_mask(_mm512_cmplt_epi32_mask(a, b));
+#elif defined(PN_ISA_avx2)
+    return pn_mask(_mm256_castsi256_ps(_mm256_cmpgt_epi32(b, a)));
+#else
+    return pn_mask(_mm_castsi128_ps(_mm_cmplt_epi32(a, b)));
+#endif
+}
+// A blend moves bits unchanged, so the float select serves int lanes.
+PN_FN pn_int pn_iselect(pn_mask m, pn_int a, pn_int b)
+{
+    return xsimd::bitwise_cast<pn_int>(
+        xsimd::select(m, xsimd::bitwise_cast<pn_float>(a), xsimd::bitwise_cast<pn_float>(b)));
+}
+PN_FN pn_int pn_uint_to_index(pn_uint u) { return xsimd::bitwise_cast<pn_int>(u); }
 
 // Double lanes (kernels/dialect.h): pn_double covers the lanes of pn_float,
 // as two xsimd double batches (lanes [0, N/2) in lo, [N/2, N) in hi), with

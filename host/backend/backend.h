@@ -7,8 +7,12 @@
 // (kernel_id.h, beside this file).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "host/backend/kernel_id.h"
@@ -18,26 +22,66 @@
 
 namespace penumbra::detail {
 
-// What a lookup-shaped entry reads per receiver (its PN_IN(T) source): the
-// planes of a moment table (float or exact), or a plain float image such as a
-// raw depth map (the percentage-closer family filters the shadow map itself).
-// The entry's Params carry the source's dims; this carries its storage.
+// The Error a backend throws for a KernelId that is no lookup-shaped entry.
+[[noreturn]] void throw_not_a_lookup(KernelId kernel);
+// The Error for a source of `given` arrays passed to an entry reading `wanted`.
+[[noreturn]] void throw_wrong_arrays(KernelId kernel, std::size_t wanted, std::size_t given);
+
+// One array of a source made of several (a deep shadow map's offsets,
+// depths, transmittances), as an entry's PN_IN(float) or PN_IN(uint) reads it.
+class SourceArray {
+public:
+    SourceArray(std::span<const float> values) : data_(values.data()), count_(values.size()), floats_(true) {}
+    SourceArray(std::span<const std::uint32_t> values)
+        : data_(values.data()), count_(values.size()), floats_(false)
+    {
+    }
+    std::size_t count() const { return count_; }
+    // The elements as T; throws Error(InvalidArgument, "source") for the other type.
+    template <class T>
+    const T* data(KernelId kernel) const;
+
+private:
+    const void* data_;
+    std::size_t count_;
+    bool floats_;
+};
+
+template <>
+const float* SourceArray::data<float>(KernelId kernel) const;
+template <>
+const std::uint32_t* SourceArray::data<std::uint32_t>(KernelId kernel) const;
+
+// What a lookup-shaped entry reads per receiver (its PN_IN source buffers):
+// the planes of a moment table (float or exact), a plain float image such as
+// a raw depth map (the percentage-closer family filters the shadow map
+// itself), both one buffer, or several arrays, one per source buffer of the
+// entry. The entry's Params carry the source's dims; this carries its storage.
 class LookupSource {
 public:
     LookupSource(const MomentTable& table) : table_(&table) {}  // NOLINT: a table is a source
     LookupSource(const Image& map) : map_(&map) {}              // NOLINT: so is a float image
+    explicit LookupSource(std::vector<SourceArray> arrays) : arrays_(std::move(arrays)) {}
 
     const MomentTable* table() const { return table_; }
     const Image* map() const { return map_; }
+    const std::vector<SourceArray>& arrays() const { return arrays_; }
     // The first element an entry reading T gets (a table's origin, an
     // image's plane 0); throws Error(InvalidArgument, "source") when the
-    // source holds no T (an exact table for a float entry, an image for a uint one).
+    // source holds no T (an exact table for a float entry, an image for a
+    // uint one, arrays for an entry of one buffer).
     template <class T>
     const T* origin(KernelId kernel) const;
+    // Array `index` of an entry reading `count` arrays, as T; throws
+    // Error(InvalidArgument, "source") unless the source is `count` arrays
+    // and that one holds T.
+    template <class T>
+    const T* array(KernelId kernel, std::size_t index, std::size_t count) const;
 
 private:
     const MomentTable* table_ = nullptr;
     const Image* map_ = nullptr;
+    std::vector<SourceArray> arrays_;
 };
 
 template <>
@@ -45,8 +89,29 @@ const float* LookupSource::origin<float>(KernelId kernel) const;
 template <>
 const std::uint32_t* LookupSource::origin<std::uint32_t>(KernelId kernel) const;
 
-// The Error a backend throws for a KernelId that is no lookup-shaped entry.
-[[noreturn]] void throw_not_a_lookup(KernelId kernel);
+template <class T>
+const T* LookupSource::array(KernelId kernel, std::size_t index, std::size_t count) const
+{
+    if (arrays_.size() != count) throw_wrong_arrays(kernel, count, arrays_.size());
+    return arrays_[index].data<T>(kernel);
+}
+
+// The source buffers of lookup-shaped entry K as a tuple of pointers, in its
+// argument order: one origin, or one pointer per array.
+template <KernelId K>
+auto source_buffers(const LookupSource& source)
+{
+    using Sources = LookupSourcesOf<K>;
+    constexpr std::size_t n = std::tuple_size_v<Sources>;
+    if constexpr (n == 1) {
+        return std::tuple{source.origin<std::tuple_element_t<0, Sources>>(K)};
+    } else {
+        return [&]<std::size_t... I>(std::index_sequence<I...>) {
+            return std::tuple{source.array<std::tuple_element_t<I, Sources>>(K, I, n)...};
+        }(std::make_index_sequence<n>{});
+    }
+}
+
 
 // Calls visit(KernelConstant<K>{}, params) with `params` as K's Params when
 // `kernel` is lookup-shaped (kernel_id.h), throws Error(InvalidArgument,

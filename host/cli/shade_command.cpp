@@ -1,5 +1,7 @@
 // penumbra shade: the file contract of issue 2.
 //   SM.exr  one float channel Z: light-space depth in [0, 1] per texel
+//           (or, for a method that reads a deep shadow map, DSM.exr: a deep
+//           OpenEXR file, penumbra/deep_exr.h)
 //   RX.exr  float channels u, v, z: receivers' texture coordinates and depth
 //   OUT.exr one float channel Y: visibility in [0, 1] on the receivers' grid
 // Output is written atomically: a failed run leaves no partial file and an
@@ -17,6 +19,7 @@
 #include "args.h"
 #include "commands.h"
 #include "input_limits.h"
+#include "penumbra/deep_exr.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
 #include "penumbra/methods.h"
@@ -30,7 +33,9 @@ std::string shade_help()
     return "usage: penumbra shade --method " + method_names("|") +
            " --shadow-map SM.exr --receivers RX.exr --out OUT.exr\n"
            "                      [--backend auto|simd|opencl|scalar] [method options]\n"
-           "  SM.exr: float channel Z, light depth in [0, 1]; RX.exr: float channels u, v, z;\n"
+           "       penumbra shade --method dsm --deep-map DSM.exr --receivers RX.exr --out OUT.exr [--filter box|tent]\n"
+           "  SM.exr: float channel Z, light depth in [0, 1]; DSM.exr: a deep OpenEXR file (dsm-build writes one);\n"
+           "  RX.exr: float channels u, v, z;\n"
            "  OUT.exr: float channel Y, visibility in [0, 1] on the receivers' grid.\n"
            "  Every method computes its own mathematics on the float32 depths (exact window sums, moments in\n"
            "  double): within 2e-4 (vsm, vssm, evsm*) / 1e-3 (msm*) of its float64 evaluation (docs/moments.md).\n"
@@ -41,7 +46,8 @@ std::string shade_help()
 
 std::set<std::string> shade_flags()
 {
-    std::set<std::string> flags = {"--method", "--shadow-map", "--receivers", "--out", "--backend"};
+    std::set<std::string> flags = {"--method", "--receivers", "--out", "--backend"};
+    for (const MethodInputInfo& i : method_inputs()) flags.insert(std::string("--") + i.flag);
     for (const MethodOption& o : method_options()) flags.insert(std::string("--") + o.name);
     return flags;
 }
@@ -56,20 +62,33 @@ std::vector<std::pair<std::string, std::string>> given_options(const Args& args)
 }
 
 struct ShadeFiles {
-    std::string shadow_map, receivers;
+    std::string map, receivers;  // map: the file of the method's input (method_inputs())
+    MethodInput input;
 };
+
+// The method's input file: its flag is required, another input's refused.
+std::string input_path(const Args& args, const Method& method)
+{
+    const MethodInputInfo& wanted = input_info(method.input);
+    for (const MethodInputInfo& i : method_inputs())
+        if (i.input != method.input && args.get(std::string("--") + i.flag))
+            throw UsageError{"option --" + std::string(i.flag) + ": " + method.name + " reads a " + wanted.what +
+                             ": give --" + wanted.flag};
+    return args.required(std::string("--") + wanted.flag);
+}
 
 // The library names the parameter at fault; the user knows flags and files.
 // A bad value in an image is named by file, channel and pixel.
 [[noreturn]] void rethrow_naming_flag_or_file(const Error& e, const ShadeFiles& files)
 {
-    const bool is_map = e.parameter() == "depth", is_receivers = e.parameter() == "receivers";
+    const bool is_map = e.parameter() == input_info(files.input).parameter,
+               is_receivers = e.parameter() == "receivers";
     if (!is_map && !is_receivers) {
         if (e.parameter().empty()) throw e;
         const MethodOption* option = option_for_parameter(e.parameter());
         throw UsageError{"option --" + (option ? std::string(option->name) : e.parameter()) + ": " + e.message()};
     }
-    const std::string& path = is_map ? files.shadow_map : files.receivers;
+    const std::string& path = is_map ? files.map : files.receivers;
     if (!e.pixel()) throw Error(e.category(), "shade", path + ": " + e.message());
     static const char* const kReceiverChannels[] = {"u", "v", "z", "dzdu", "dzdv"};
     const BadPixel& bad = *e.pixel();
@@ -88,6 +107,23 @@ Image read_input(const std::string& path, const std::vector<std::string>& channe
     return image;
 }
 
+// A deep map's reader names the file, the pixel and the sample; the line is the command's.
+DeepShadowMap read_deep_map(const std::string& path)
+{
+    try {
+        return read_deep_exr(path, exr_limits());
+    } catch (const Error& e) {
+        throw Error(e.category(), "shade", e.message());
+    }
+}
+
+Context start(std::future<Context>& starting)
+{
+    Context context = starting.get();
+    for (const std::string& warning : context.warnings()) std::cerr << "penumbra shade: warning: " << warning << "\n";
+    return context;
+}
+
 }  // namespace
 
 int shade_command(const std::vector<std::string>& argv)
@@ -97,10 +133,16 @@ int shade_command(const std::vector<std::string>& argv)
         std::cout << shade_help();
         return 0;
     }
-    const ShadeFiles files{args.required("--shadow-map"), args.required("--receivers")};
     const std::string method_name = args.required("--method");
+    const Method* method = nullptr;
+    try {
+        method = &find_method(method_name);
+    } catch (const Error& e) {
+        throw UsageError{"option --method: " + e.message()};
+    }
+    const ShadeFiles files{input_path(args, *method), args.required("--receivers"), method->input};
     const std::string out_path = args.required("--out");
-    require_safe_outputs({out_path}, {files.shadow_map, files.receivers}, "shade");
+    require_safe_outputs({out_path}, {files.map, files.receivers}, "shade");
     Backend backend;
     try {
         backend = parse_backend(args.text("--backend", "auto"));
@@ -108,16 +150,20 @@ int shade_command(const std::vector<std::string>& argv)
         throw UsageError{std::string(e.what())};
     }
     try {
-        const Method& method = find_method(method_name);
-        const MethodSettings settings = parse_method_settings(method, given_options(args));
+        const MethodSettings settings = parse_method_settings(*method, given_options(args));
         // The backend starts while the inputs are read (OpenCL: tens of ms).
         std::future<Context> starting = start_context(ContextOptions{backend, {}});
-        const Image map = read_input(files.shadow_map, {"Z"}, "shadow map");
-        const Image receivers = read_input(files.receivers, receiver_channels(settings), "receivers image");
-        Context context = starting.get();
-        for (const std::string& warning : context.warnings())
-            std::cerr << "penumbra shade: warning: " << warning << "\n";
-        write_exr(out_path, method.run(context, map, receivers, settings), {"Y"});
+        if (method->input == MethodInput::DeepMap) {
+            const DeepShadowMap map = read_deep_map(files.map);
+            const Image receivers = read_input(files.receivers, receiver_channels(settings), "receivers image");
+            Context context = start(starting);
+            write_exr(out_path, method->run(context, map, receivers, settings), {"Y"});
+        } else {
+            const Image map = read_input(files.map, {"Z"}, "shadow map");
+            const Image receivers = read_input(files.receivers, receiver_channels(settings), "receivers image");
+            Context context = start(starting);
+            write_exr(out_path, method->run(context, map, receivers, settings), {"Y"});
+        }
     } catch (const Error& e) {
         rethrow_naming_flag_or_file(e, files);
     }

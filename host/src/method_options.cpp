@@ -55,7 +55,8 @@ void set_float(const Method& m, const std::string& text, MethodSettings& s)
 // One option for every window: the box of pcf has its own reason for the limit.
 void set_radius(const Method& m, const std::string& text, MethodSettings& s)
 {
-    const ParameterRange& range = std::string_view(m.name) == "pcf" ? kPcfRadiusRange : kRadiusRange;
+    const std::string_view name = m.name;
+    const ParameterRange& range = name == "pcf" ? kPcfRadiusRange : name == "dsm" ? kDeepRadiusRange : kRadiusRange;
     const int value = parse_int(m, range.name, text);
     check(range, value, m.name);
     s.radius = value;
@@ -133,6 +134,18 @@ void set_rotation(const Method& m, const std::string& text, MethodSettings& s)
     s.rotate = parse_word(m, "rotation", text, kRotations) == 1;
 }
 
+void set_deep_filter(const Method& m, const std::string& text, MethodSettings& s)
+{
+    static const char* const kFilters[] = {"box", "tent"};  // DeepFilter's order
+    s.deep_filter = DeepFilter(parse_word(m, "filter", text, kFilters));
+}
+
+void set_deep_search(const Method& m, const std::string& text, MethodSettings& s)
+{
+    static const char* const kSearches[] = {"binary", "linear"};  // DeepSearch's order
+    s.deep_search = DeepSearch(parse_word(m, "search", text, kSearches));
+}
+
 const MethodOption* find_option(std::string_view name)
 {
     for (const MethodOption& o : method_options())
@@ -180,7 +193,8 @@ const std::vector<MethodOption>& method_options()
          set_float<&S::moment_bias, kMomentBiasRange>},
         {"depth-bias", "D",
          "subtracted from receiver depth (sloped ones need about half a texel's depth change more)",
-         "3.05e-5 = two 16-bit steps (msm*), 0 (evsm*), 1e-3 (pcf*), 5e-4 (pcss), 0 = the cone's tip (burley)",
+         "3.05e-5 = two 16-bit steps (msm*), 0 (evsm*), 1e-3 (pcf*), 5e-4 (pcss), 0 = the cone's tip (burley), "
+         "3e-3 (dsm)",
          &kDepthBiasRange, false,
          set_float<&S::depth_bias, kDepthBiasRange>},
         {"plane-bias", "S",
@@ -234,6 +248,12 @@ const std::vector<MethodOption>& method_options()
          set_float<&S::disc_radius, kPcfDiscRadiusRange>},
         {"rotation", "tile|none", "the disc rotated per receiver from Toy Story 3's 4x4 tile, or not (bands)",
          "tile", nullptr, false, set_rotation},
+        {"filter", "box|tent",
+         "the deep map's lookup filter: box, (2R+1)^2 pixels around the receiver's; tent, bilinear of half-width "
+         "R+1 texels, (2R+2)^2 pixels",
+         "tent", nullptr, false, set_deep_filter},
+        {"search", "linear|binary", "how a deep pixel's vertices are searched for the receiver's depth (one result)",
+         "linear (measured faster, docs/deep_shadow_maps.md)", nullptr, false, set_deep_search},
     };
     return options;
 }

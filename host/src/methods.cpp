@@ -153,7 +153,40 @@ void shade_burley(Context& context, const PreparedMap& prepared, const Image& re
     burley(context, prepared.map(), receivers, options, out);
 }
 
+// Deep shadow maps: the map is the prepared input itself (no table).
+PreparedMap prepare_deep_map(Context&, const DeepShadowMap& map, const MethodSettings&) { return PreparedMap(map); }
+
+void shade_dsm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+               Image& out)
+{
+    const DeepLookupOptions options{s.deep_filter, s.radius, s.deep_search, s.depth_bias.value_or(kDeepDefaultBias)};
+    deep_lookup(context, prepared.deep_map(), receivers, options, out);
+}
+
+void require_input(const Method& m, MethodInput given)
+{
+    if (m.input == given) return;
+    throw Error(ErrorCategory::InvalidArgument, m.name, "method",
+                std::string(m.name) + " reads a " + input_info(m.input).what + ", not a " + input_info(given).what);
+}
+
 }  // namespace
+
+const std::vector<MethodInputInfo>& method_inputs()
+{
+    static const std::vector<MethodInputInfo> inputs = {
+        {MethodInput::ShadowMap, "depth", "shadow-map", "shadow map"},
+        {MethodInput::DeepMap, "deep-map", "deep-map", "deep shadow map"},
+    };
+    return inputs;
+}
+
+const MethodInputInfo& input_info(MethodInput input)
+{
+    for (const MethodInputInfo& info : method_inputs())
+        if (info.input == input) return info;
+    throw Error(ErrorCategory::InvalidArgument, "shade", "method", "an input no method table entry knows");
+}
 
 std::vector<std::string> receiver_channels(const MethodSettings& s)
 {
@@ -166,7 +199,16 @@ PreparedMap prepare_map(Context&, const Image& map, const MethodSettings&) { ret
 
 Image Method::run(Context& context, const Image& map, const Image& receivers, const MethodSettings& settings) const
 {
+    require_input(*this, MethodInput::ShadowMap);
     const PreparedMap prepared = prepare(context, map, settings);
+    return detail::visibility_output(receivers, [&](Image& out) { shade(context, prepared, receivers, settings, out); });
+}
+
+Image Method::run(Context& context, const DeepShadowMap& map, const Image& receivers,
+                  const MethodSettings& settings) const
+{
+    require_input(*this, MethodInput::DeepMap);
+    const PreparedMap prepared = prepare_deep(context, map, settings);
     return detail::visibility_output(receivers, [&](Image& out) { shade(context, prepared, receivers, settings, out); });
 }
 
@@ -204,6 +246,8 @@ const std::vector<Method>& methods()
          {"min-radius", "max-radius", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale",
           "bias-derivatives", "bias-slope", "bias-slope-per-depth", "falloff", "blocker-samples", "filter-samples"},
          prepare_map, shade_burley},
+        {"dsm", "deep shadow maps: filtered lookup of per-pixel transmittance functions (Lokovic & Veach 2000)",
+         {"radius", "depth-bias", "filter", "search"}, nullptr, shade_dsm, MethodInput::DeepMap, prepare_deep_map},
     };
     return table;
 }

@@ -24,6 +24,7 @@ template <>
 const float* LookupSource::origin<float>(KernelId kernel) const
 {
     if (map_) return map_->plane(0);
+    if (!table_) wrong_source(kernel, "one float buffer (a float table or image)");
     if (table_->precision() != Precision::Float) wrong_source(kernel, "float values (a float table or image)");
     return table_->float_origin();
 }
@@ -33,6 +34,28 @@ const std::uint32_t* LookupSource::origin<std::uint32_t>(KernelId kernel) const
 {
     if (!table_ || table_->precision() != Precision::Exact) wrong_source(kernel, "an exact moment table");
     return table_->exact_origin();
+}
+
+template <>
+const float* SourceArray::data<float>(KernelId kernel) const
+{
+    if (!floats_) wrong_source(kernel, "a float array at this place");
+    return static_cast<const float*>(data_);
+}
+
+template <>
+const std::uint32_t* SourceArray::data<std::uint32_t>(KernelId kernel) const
+{
+    if (floats_) wrong_source(kernel, "a uint array at this place");
+    return static_cast<const std::uint32_t*>(data_);
+}
+
+void throw_wrong_arrays(KernelId kernel, std::size_t wanted, std::size_t given)
+{
+    throw Error(ErrorCategory::InvalidArgument, "receiver_lookup", "source",
+                "kernel '" + std::string(kernel_name(kernel)) + "' reads " + std::to_string(wanted) +
+                    " source arrays, and the source given holds " + std::to_string(given) +
+                    "; pass the map its entry names");
 }
 
 // The map is scanned for values outside [0, 1] up front: the kernels do not

@@ -32,7 +32,7 @@ TEST(MethodTable, ListsEachMethodOnceWithKnownOptions)
         }
     }
     EXPECT_EQ(names, (std::set<std::string>{"vsm", "vssm", "msm", "msm-soft", "evsm2", "evsm4", "pcf", "pcf-gauss",
-                                            "pcf-disc", "pcss", "burley"}));
+                                            "pcf-disc", "pcss", "burley", "dsm"}));
 }
 
 // A value just outside the range: below an open or closed lower bound, above an upper one.
@@ -81,6 +81,7 @@ TEST(MethodTable, PrepareThenShadeIsRunAndThePreparedTableIsReused)
     const Image map = testing::random_depth(9, 7, 3);
     const Image rx = testing::receivers_on_texels(7, 3, 9, 7, 0.1f, 0.9f, 4);
     for (const Method& m : methods()) {
+        if (m.input != MethodInput::ShadowMap) continue;  // DeepMapMethod below
         MethodSettings s;
         s.radius = 1;
         const Image expected = m.run(ctx, map, rx, s);
@@ -128,7 +129,9 @@ TEST_F(MethodTableCli, EveryOutOfRangeOptionExitsTwoNamingTheFlag)
             std::string text = outside(*o->range);
             if (name == "exponents" && std::string(m.name) == "evsm4") text += ",1";
             const std::string flag = "--" + std::string(name);
-            const auto r = testing::run_cli({"shade", "--method", m.name, "--shadow-map", path("sm.exr"),
+            // Options are checked before any file is read: the flat map serves every input.
+            const std::string input = "--" + std::string(input_info(m.input).flag);
+            const auto r = testing::run_cli({"shade", "--method", m.name, input, path("sm.exr"),
                                              "--receivers", path("rx.exr"), "--out", path("out.exr"), "--backend",
                                              "scalar", flag, text});
             EXPECT_EQ(r.exit_code, 2) << m.name << " " << flag << " " << text << ": " << r.err;

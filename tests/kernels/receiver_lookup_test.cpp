@@ -15,6 +15,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
+#include <tuple>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -22,6 +24,7 @@
 
 #include "host/backend/backend.h"
 #include "penumbra/chebyshev.h"
+#include "penumbra/deep_shadow_map.h"
 #include "penumbra/moments.h"
 #include "support/backends.h"
 #include "support/errors.h"
@@ -68,12 +71,27 @@ struct Sources {
           msm_float(build_msm_table(oracle, depth_map(), Quantization::Bits32, Precision::Float)),
           msm_exact(build_msm_table(oracle, depth_map(), Quantization::None, Precision::Exact)),
           evsm_float(build_evsm_table(oracle, depth_map(), EvsmWarp{4, {}, {}, Quantization::Bits32}, Precision::Float)),
-          evsm_exact(build_evsm_table(oracle, depth_map(), EvsmWarp{4, {}, {}, Quantization::None}, Precision::Exact))
+          evsm_exact(build_evsm_table(oracle, depth_map(), EvsmWarp{4, {}, {}, Quantization::None}, Precision::Exact)),
+          deep(opaque_deep_map(depth_map())),
+          deep_source({std::span(deep.offsets()), std::span(deep.depths()), std::span(deep.transmittances())})
     {
+    }
+    // The depth map as a deep map: an opaque step at each texel's depth.
+    static DeepShadowMap opaque_deep_map(const Image& map)
+    {
+        DeepShadowMapBuilder builder(map.width(), map.height());
+        for (int y = 0; y < map.height(); ++y)
+            for (int x = 0; x < map.width(); ++x) {
+                const float d = map.at(0, x, y);
+                builder.add_pixel(std::vector<float>{d, d}, std::vector<float>{1.0f, 0.0f});
+            }
+        return builder.build();
     }
     MomentTable chebyshev_float, chebyshev_exact;
     MsmTable msm_float, msm_exact;
     EvsmTable evsm_float, evsm_exact;
+    DeepShadowMap deep;
+    detail::LookupSource deep_source;  // its three arrays (host/src/deep_lookup.cpp builds the same)
 };
 
 // One entry's run: fills `out` (the receivers' grid) on `context`.
@@ -112,7 +130,7 @@ template <KernelId K>
 LookupRun lookup_case(const Sources& s)
 {
     using Params = typename detail::KernelTraits<K>::Params;
-    constexpr bool exact = std::is_same_v<detail::LookupSourceOf<K>, std::uint32_t>;
+    constexpr bool exact = std::is_same_v<detail::LookupSourcesOf<K>, std::tuple<std::uint32_t>>;
     const std::string_view name = detail::kernel_name(K);
     const bool direct = name.ends_with("_direct");
     if constexpr (std::is_same_v<Params, ChebyshevParams>) {
@@ -156,6 +174,20 @@ LookupRun lookup_case(const Sources& s)
         p.disc_radius = 2.0f;
         p.rotate = 1;
         if (name.starts_with("pcf")) return map_run_of<K>(depth_map(), p, &Params::depth);
+    } else if constexpr (std::is_same_v<Params, DsmParams>) {
+        DsmParams p{};  // host/src/deep_lookup.cpp
+        p.map = pn_dims{s.deep.width(), s.deep.height(), s.deep.width(), s.deep.width() * s.deep.height()};
+        p.filter = PN_DSM_BOX;  // nearest pixel: its opaque step is lit or shadowed, as PCF r = 0
+        p.search_top = 2;
+        p.vertices = int(s.deep.vertex_count());
+        p.last_vertex = p.vertices - 1;
+        p.bias = 1e-3f;
+        return [&source = s.deep_source, p](Context& context, const Image& receivers, Image& out) mutable {
+            p.receivers = detail::dims_of(receivers);
+            p.out = detail::dims_of(out);
+            std::vector<int> bad_rows(std::size_t(receivers.height()), 0);
+            detail::receiver_lookup<K>(context.impl(), source, receivers, p, out, bad_rows.data());
+        };
     } else if constexpr (std::is_same_v<Params, SoftPcfParams>) {
         SoftPcfParams p{};  // host/src/soft_pcf.cpp; discs a few texels wide on the 9x5 map
         p.bias = PcfBias{PN_BIAS_CONSTANT, 1e-3f, 1.0f, 0.0f, 0.02f};
@@ -259,6 +291,15 @@ PN_BACKEND_TEST(ReceiverLookupRefusal, RefusesWhatIsNoLookupWithATypedError)
                  "exact moment table");
     expect_error([&] { run(KernelId::vsm_float, sources.chebyshev_exact); }, ErrorCategory::InvalidArgument,
                  "receiver_lookup", "float values");
+    // A source of several arrays for an entry of one buffer, and the reverse.
+    expect_error([&] { run(KernelId::vsm_float, sources.deep_source); }, ErrorCategory::InvalidArgument,
+                 "receiver_lookup", "one float buffer");
+    expect_error([&] { run(KernelId::dsm_lookup, sources.chebyshev_float); }, ErrorCategory::InvalidArgument,
+                 "receiver_lookup", "reads 3 source arrays");
+    const std::vector<float> values(4, 0.5f);
+    const detail::LookupSource swapped({std::span(values), std::span(values), std::span(values)});
+    expect_error([&] { run(KernelId::dsm_lookup, swapped); }, ErrorCategory::InvalidArgument, "receiver_lookup",
+                 "a uint array");
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, ReceiverLookupRefusal, ::testing::ValuesIn(backend_names()), backend_test_name);

@@ -22,6 +22,8 @@
 
 #include "penumbra/chebyshev.h"
 #include "penumbra/context.h"
+#include "penumbra/deep_lookup.h"
+#include "penumbra/deep_shadow_map.h"
 #include "penumbra/image.h"
 #include "penumbra/moments.h"
 #include "penumbra/parameter_range.h"
@@ -59,7 +61,25 @@ struct MethodSettings {
     int taps = PcfDiscOptions{}.taps;
     float disc_radius = PcfDiscOptions{}.radius;
     bool rotate = PcfDiscOptions{}.rotate;
+    // Deep shadow map lookups (penumbra/deep_lookup.h); depth_bias unset: kDeepDefaultBias.
+    DeepFilter deep_filter = DeepLookupOptions{}.filter;
+    DeepSearch deep_search = DeepLookupOptions{}.search;
 };
+
+// What a method's build step reads: a shadow map (one channel of depth in
+// [0, 1], `penumbra shade --shadow-map`) or a deep shadow map (`--deep-map`).
+enum class MethodInput { ShadowMap, DeepMap };
+
+// Each input once: the library parameter its errors name (Error::parameter())
+// and the front end's name for it (the CLI's flag, without "--").
+struct MethodInputInfo {
+    MethodInput input;
+    const char* parameter;  // "depth", "deep-map"
+    const char* flag;       // "shadow-map", "deep-map"
+    const char* what;       // "shadow map", "deep shadow map"
+};
+const std::vector<MethodInputInfo>& method_inputs();
+const MethodInputInfo& input_info(MethodInput input);
 
 struct Method;
 
@@ -69,13 +89,15 @@ struct Method;
 class PreparedMap {
 public:
     explicit PreparedMap(const Image& map) : map_(&map) {}
+    explicit PreparedMap(const DeepShadowMap& map) : deep_map_(&map) {}
     template <class Table>
     PreparedMap(const Image& map, Table&& table)
         : map_(&map), table_(std::make_shared<const std::decay_t<Table>>(std::forward<Table>(table)))
     {
     }
 
-    const Image& map() const { return *map_; }
+    const Image& map() const { return *map_; }  // a ShadowMap method's
+    const DeepShadowMap& deep_map() const { return *deep_map_; }  // a DeepMap method's
     // Whether the build step made a table (a box method at a small radius
     // makes none: its shade step sums the window from the map).
     bool has_table() const { return table_.has_value(); }
@@ -88,7 +110,8 @@ public:
     }
 
 private:
-    const Image* map_;
+    const Image* map_ = nullptr;
+    const DeepShadowMap* deep_map_ = nullptr;
     std::any table_;  // std::shared_ptr<const Table>: shared, never copied
 };
 
@@ -112,17 +135,25 @@ struct Method {
     const char* name;      // "vsm"
     const char* summary;   // one line
     std::vector<std::string_view> reads;  // the options it uses, by name
-    // The build step: the method's table from `map` (one channel, depth in
-    // [0, 1]), or none (prepare_map) for a method that reads the map itself.
+    // The build step of a ShadowMap method: the method's table from `map`
+    // (one channel, depth in [0, 1]), or none (prepare_map) for a method that
+    // reads the map itself. Null for a DeepMap method.
     PreparedMap (*prepare)(Context& context, const Image& map, const MethodSettings& settings);
     // The shade step: visibility on the receivers' grid (`receivers`: u, v,
     // z) into `out` (one channel, the receivers' size).
     void (*shade)(Context& context, const PreparedMap& prepared, const Image& receivers,
                   const MethodSettings& settings, Image& out);
 
+    // What the build step reads; a DeepMap method's build step is prepare_deep.
+    MethodInput input = MethodInput::ShadowMap;
+    PreparedMap (*prepare_deep)(Context& context, const DeepShadowMap& map, const MethodSettings& settings) = nullptr;
+
     // Both steps, into a new image, as `penumbra shade` and `penumbra demo`
-    // run a method; a benchmark times each step alone.
+    // run a method; a benchmark times each step alone. Each throws
+    // Error(InvalidArgument, parameter "method") for a method of the other input.
     Image run(Context& context, const Image& map, const Image& receivers, const MethodSettings& settings) const;
+    Image run(Context& context, const DeepShadowMap& map, const Image& receivers,
+              const MethodSettings& settings) const;
 };
 
 // The receivers' channels a method run with `settings` reads from a file:
