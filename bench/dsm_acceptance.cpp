@@ -142,8 +142,8 @@ DepthSlope depth_slope(const reference::Receivers& rx, int x, int y)
 // at a depth by one of two rules:
 //   plane     the receiver plane's depth at the tap's pixel centre, less half
 //             the plane's depth change across a pixel (and 1e-4);
-//   constant  the receiver's depth less 0.003 (the `dsm` lookup's default on
-//             branch h14look, which DeepMap.NearestPixelLookupFollowsThePointLightTruth
+//   constant  the receiver's depth less 0.003 (kDeepDefaultBias, the `dsm`
+//             lookup's default, which DeepMap.NearestPixelLookupFollowsThePointLightTruth
 //             chose for fog and layers).
 struct Lookup {
     enum Kind { Nearest, Bilinear, Box } kind;

@@ -39,6 +39,7 @@
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
 #include "penumbra/png_io.h"
+#include "penumbra/reference/deep_map.h"
 #include "penumbra/reference/ground_truth.h"
 #include "penumbra/reference/light_space.h"
 #include "penumbra/reference/metrics.h"
@@ -193,13 +194,23 @@ struct SceneFrames {
     double truth_noise = 0;
 };
 
-std::vector<DemoFrame> render_frames(const reference::Scene& scene, const DemoOptions& o, Progress& progress)
+std::shared_ptr<const DeepShadowMap> render_deep_map(const reference::Scene& scene, int map_size)
+{
+    reference::DeepMapOptions options;
+    options.size = demo_deep_map_size(map_size);
+    options.samples = kDemoDeepSamples;
+    return std::make_shared<const DeepShadowMap>(reference::render_deep_shadow_map(scene, options));
+}
+
+std::vector<DemoFrame> render_frames(const reference::Scene& scene, const DemoOptions& o, bool deep,
+                                     Progress& progress)
 {
     const int map = map_size_for(scene, o);
     std::vector<DemoFrame> frames;
     for (const reference::Scene& shifted : reference::flicker_frames(scene, o.frames, map, map)) {
         DemoFrame f{shifted, reference::render_shadow_map(shifted, map, map),
-                    reference::render_receivers(shifted, o.view.width, o.view.height), Image()};
+                    reference::render_receivers(shifted, o.view.width, o.view.height), Image(), nullptr};
+        if (deep) f.deep_map = render_deep_map(shifted, map);
         f.truth = cached_truth(shifted, f.receivers, o.strata, o.out / "cache");
         frames.push_back(std::move(f));
         progress.step(scene.name + ": ground truth");
@@ -237,9 +248,9 @@ double truth_noise(const DemoFrame& f0, const DemoOptions& o)
     return reference::rmse(f0.truth, finer, &scored);
 }
 
-SceneFrames render_scene_frames(const reference::Scene& scene, const DemoOptions& o, Progress& progress)
+SceneFrames render_scene_frames(const reference::Scene& scene, const DemoOptions& o, bool deep, Progress& progress)
 {
-    SceneFrames s{render_frames(scene, o, progress), {}, 0.0};
+    SceneFrames s{render_frames(scene, o, deep, progress), {}, 0.0};
     s.truth_noise = truth_noise(s.frames[0], o);
     s.timed = reference::render_receivers(s.frames[0].scene, o.frame.width, o.frame.height);
     return s;
@@ -441,7 +452,10 @@ void run_scene(Context& ctx, const DemoOptions& o, const reference::Scene& scene
                DemoResults& results)
 {
     const std::string& name = scene.name;
-    const SceneFrames scene_frames = render_scene_frames(scene, o, progress);
+    const std::vector<DemoMethod> methods = wanted_methods(scene, o);
+    const bool deep = std::any_of(methods.begin(), methods.end(),
+                                  [](const DemoMethod& m) { return m.input == MethodInput::DeepMap; });
+    const SceneFrames scene_frames = render_scene_frames(scene, o, deep, progress);
     const std::vector<DemoFrame>& frames = scene_frames.frames;
     results.truth_noise.emplace_back(name, scene_frames.truth_noise);
     progress.milestone(name + ": ground truth, " + std::to_string(o.frames) + " frames");
@@ -449,7 +463,6 @@ void run_scene(Context& ctx, const DemoOptions& o, const reference::Scene& scene
     create_output_directory(dir, "--out");
     write_visibility_png((dir / "truth.png").string(), frames[0].truth, frames[0].receivers.mask,
                          scored_mask(frames[0]));
-    const std::vector<DemoMethod> methods = wanted_methods(scene, o);
     std::vector<const DemoSetting*> settings;
     std::vector<DemoPicture> pictures;
     const std::size_t first_row = results.rows.size();

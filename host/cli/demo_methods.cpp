@@ -288,7 +288,42 @@ DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vecto
     return m;
 }
 
+// Deep shadow maps, by the method table's `dsm` entry, on the frame's deep
+// map: the bilinear (tent r = 0) lookup, the paper's texture-like filter,
+// then one texel wider (tent r = 1) and the box of 3 x 3 pixels, at the
+// lookup's default depth bias.
+DemoMethod deep_method()
+{
+    const Method& method = find_method("dsm");
+    DemoMethod m{.name = method.name, .settings = {}, .preview_setting = kFirstSetting, .input = method.input};
+    struct Point {
+        const char* label;
+        DeepFilter filter;
+        int radius;
+    };
+    for (Point point : {Point{"tent r=0", DeepFilter::Tent, 0}, Point{"tent r=1", DeepFilter::Tent, 1},
+                        Point{"box r=1", DeepFilter::Box, 1}}) {
+        MethodSettings s;
+        s.deep_filter = point.filter;
+        s.radius = point.radius;
+        m.settings.push_back(
+            {.label = point.label,
+             .prepare = [&method, s](Context& ctx, const DemoFrame& f) -> DemoPrepared {
+                 return std::make_shared<const PreparedMap>(method.prepare_deep(ctx, *f.deep_map, s));
+             },
+             .shade = [&method, s](Context& ctx, const DemoFrame&, const reference::Receivers& rx,
+                                   const DemoPrepared& prepared) {
+                 Image out(rx.light_uvz.width(), rx.light_uvz.height(), 1);
+                 method.shade(ctx, *std::static_pointer_cast<const PreparedMap>(prepared), rx.light_uvz, s, out);
+                 return out;
+             }});
+    }
+    return m;
+}
+
 }  // namespace
+
+int demo_deep_map_size(int map_size) { return std::clamp(map_size / 2, 1, 512); }
 
 Image run_setting(Context& context, const DemoSetting& setting, const DemoFrame& frame)
 {
@@ -323,7 +358,8 @@ std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size
             table_method("pcf", pcf_sweep()),
             table_method("pcf-gauss", pcf_gauss_sweep()),
             pcf_disc,
-            blurred_method(pcf_disc, "pcf-disc+blur", disc_few_taps)};
+            blurred_method(pcf_disc, "pcf-disc+blur", disc_few_taps),
+            deep_method()};
 }
 
 }  // namespace penumbra::cli
