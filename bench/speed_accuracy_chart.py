@@ -6,11 +6,12 @@ usage: speed_accuracy_chart.py results.csv chart.png
 One panel per scene: x = milliseconds per timed frame (the map's and the
 receivers' work, median of the repetitions; the bar spans their min-max),
 log; y = RMSE against the ray-traced ground truth; a marker per family
-(moments, distance fields, percentage-closer), a colour per method within its
-family, a point per setting labelled with it, and each method's Pareto front
-(the settings no other setting of the same method beats on both time and
-error) joined by a line. The dashed line is the truth's own noise (its RMSE
-against a truth with 4x the rays): differences below it are not resolved.
+(moments, distance fields, percentage-closer, deep shadow maps), a colour
+per method within its family, a point per setting labelled with it, and
+each method's Pareto front (the settings no other setting of the same
+method beats on both time and error) joined by a line. The dashed line is
+the truth's own noise (its RMSE against a truth with 4x the rays):
+differences below it are not resolved.
 The legend takes an empty panel where there is one.
 Needs matplotlib (Debian's python3-matplotlib, for /usr/bin/python3).
 """
@@ -37,7 +38,7 @@ def pareto_front(points):
 
 # A method's family by its name: ten colours cannot tell seventeen methods
 # apart, a colour within the family and a marker per family can.
-FAMILIES = (("sdf", "s"), ("pcf", "^"), ("pcss", "^"), ("burley", "^"), ("", "o"))
+FAMILIES = (("sdf", "s"), ("pcf", "^"), ("pcss", "^"), ("burley", "^"), ("dsm", "*"), ("", "o"))
 
 
 def family_marker(method):

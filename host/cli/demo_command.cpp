@@ -39,6 +39,7 @@
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
 #include "penumbra/png_io.h"
+#include "penumbra/reference/deep_map.h"
 #include "penumbra/reference/ground_truth.h"
 #include "penumbra/reference/light_space.h"
 #include "penumbra/reference/metrics.h"
@@ -94,6 +95,26 @@ std::vector<double> parse_budgets(const std::string& text)
     return budgets;
 }
 
+// --scene: scene names and the sets `opaque` (the five shadow-map scenes),
+// `deep` (hair, fog, layers) and `all` (the default: both), in order, each once.
+std::vector<std::string> scene_list(const std::string& text)
+{
+    const std::pair<const char*, reference::SceneSet> sets[] = {
+        {"opaque", reference::SceneSet::Opaque}, {"deep", reference::SceneSet::Deep}, {"all", reference::SceneSet::All}};
+    std::vector<std::string> scenes;
+    auto add = [&](const std::string& name) {
+        if (std::find(scenes.begin(), scenes.end(), name) == scenes.end()) scenes.push_back(name);
+    };
+    for (const std::string& item : split_list(text)) {
+        const auto set = std::find_if(std::begin(sets), std::end(sets), [&](const auto& s) { return item == s.first; });
+        if (set == std::end(sets)) add(item);
+        else
+            for (const std::string& name : reference::builtin_scene_names(set->second)) add(name);
+    }
+    if (scenes.empty()) throw UsageError{"option --scene: give scene names or opaque, deep, all"};
+    return scenes;
+}
+
 DemoOptions parse_options(const std::vector<std::string>& argv)
 {
     const Args args(argv,
@@ -114,8 +135,7 @@ DemoOptions parse_options(const std::vector<std::string>& argv)
     } catch (const Error& e) {
         throw UsageError{e.what()};
     }
-    o.scenes = split_list(args.text("--scene", ""));
-    if (o.scenes.empty()) o.scenes = reference::builtin_scene_names();
+    o.scenes = scene_list(args.text("--scene", "all"));
     o.methods = split_list(args.text("--method", ""));
     o.map_size = args.integer("--map-size", 0);
     if (o.map_size < 0 || o.map_size > 16384) throw UsageError{"option --map-size: must be in [1, 16384]"};
@@ -174,13 +194,23 @@ struct SceneFrames {
     double truth_noise = 0;
 };
 
-std::vector<DemoFrame> render_frames(const reference::Scene& scene, const DemoOptions& o, Progress& progress)
+std::shared_ptr<const DeepShadowMap> render_deep_map(const reference::Scene& scene, int map_size)
+{
+    reference::DeepMapOptions options;
+    options.size = demo_deep_map_size(map_size);
+    options.samples = kDemoDeepSamples;
+    return std::make_shared<const DeepShadowMap>(reference::render_deep_shadow_map(scene, options));
+}
+
+std::vector<DemoFrame> render_frames(const reference::Scene& scene, const DemoOptions& o, bool deep,
+                                     Progress& progress)
 {
     const int map = map_size_for(scene, o);
     std::vector<DemoFrame> frames;
     for (const reference::Scene& shifted : reference::flicker_frames(scene, o.frames, map, map)) {
         DemoFrame f{shifted, reference::render_shadow_map(shifted, map, map),
-                    reference::render_receivers(shifted, o.view.width, o.view.height), Image()};
+                    reference::render_receivers(shifted, o.view.width, o.view.height), Image(), nullptr};
+        if (deep) f.deep_map = render_deep_map(shifted, map);
         f.truth = cached_truth(shifted, f.receivers, o.strata, o.out / "cache");
         frames.push_back(std::move(f));
         progress.step(scene.name + ": ground truth");
@@ -218,9 +248,9 @@ double truth_noise(const DemoFrame& f0, const DemoOptions& o)
     return reference::rmse(f0.truth, finer, &scored);
 }
 
-SceneFrames render_scene_frames(const reference::Scene& scene, const DemoOptions& o, Progress& progress)
+SceneFrames render_scene_frames(const reference::Scene& scene, const DemoOptions& o, bool deep, Progress& progress)
 {
-    SceneFrames s{render_frames(scene, o, progress), {}, 0.0};
+    SceneFrames s{render_frames(scene, o, deep, progress), {}, 0.0};
     s.truth_noise = truth_noise(s.frames[0], o);
     s.timed = reference::render_receivers(s.frames[0].scene, o.frame.width, o.frame.height);
     return s;
@@ -359,6 +389,12 @@ constexpr const char* kQuickCaveat =
     "0.024-0.038 in the full run. The classic sdf rows share one over-darkening: it comes from the grid's surfaces "
     "(a hit is 0 whatever k), and p99 1.0 from leaks through poles thinner than a voxel.";
 
+// The rule for point lights (the deep scenes), said where the rows are read.
+constexpr const char* kPointLightNote =
+    "Under a point light (hair, fog, layers) the truth is exact, one ray per receiver, so its noise is 0; the soft "
+    "methods, which need a light size, are sized for a square light whose penumbra is one texel of the map "
+    "(docs/deep_shadow_maps.md).";
+
 bool wanted(const std::vector<std::string>& list, const std::string& name)
 {
     return list.empty() || std::find(list.begin(), list.end(), name) != list.end();
@@ -416,7 +452,10 @@ void run_scene(Context& ctx, const DemoOptions& o, const reference::Scene& scene
                DemoResults& results)
 {
     const std::string& name = scene.name;
-    const SceneFrames scene_frames = render_scene_frames(scene, o, progress);
+    const std::vector<DemoMethod> methods = wanted_methods(scene, o);
+    const bool deep = std::any_of(methods.begin(), methods.end(),
+                                  [](const DemoMethod& m) { return m.input == MethodInput::DeepMap; });
+    const SceneFrames scene_frames = render_scene_frames(scene, o, deep, progress);
     const std::vector<DemoFrame>& frames = scene_frames.frames;
     results.truth_noise.emplace_back(name, scene_frames.truth_noise);
     progress.milestone(name + ": ground truth, " + std::to_string(o.frames) + " frames");
@@ -424,7 +463,6 @@ void run_scene(Context& ctx, const DemoOptions& o, const reference::Scene& scene
     create_output_directory(dir, "--out");
     write_visibility_png((dir / "truth.png").string(), frames[0].truth, frames[0].receivers.mask,
                          scored_mask(frames[0]));
-    const std::vector<DemoMethod> methods = wanted_methods(scene, o);
     std::vector<const DemoSetting*> settings;
     std::vector<DemoPicture> pictures;
     const std::size_t first_row = results.rows.size();
@@ -458,6 +496,10 @@ std::string protocol_text(const DemoOptions& o)
                        std::to_string(o.strata * o.strata) + " rays per receiver, " + std::to_string(o.frames) +
                        " frames for flicker; timed on " + frame_text(o.frame) + " receivers, medians of " +
                        std::to_string(o.repetitions) + " interleaved repetitions after a warm-up.";
+    if (std::any_of(o.scenes.begin(), o.scenes.end(), [](const std::string& name) {
+            return reference::builtin_scene(name).light.shape == reference::LightShape::Point;
+        }))
+        text.append(" ").append(kPointLightNote);
     if (o.quick) text.append(" ").append(kQuickCaveat);
     return text;
 }
@@ -490,12 +532,14 @@ void write_outputs(Context& ctx, const DemoOptions& o, DemoResults& results)
 int demo_command(const std::vector<std::string>& argv)
 {
     if (!argv.empty() && argv[0] == "--help") {
-        std::cout << "usage: penumbra demo [--quick] [--out DIR] [--backend B] [--scene a,b] [--method a,b]\n"
+        std::cout << "usage: penumbra demo [--quick] [--out DIR] [--backend B] [--scene a,b|SET] [--method a,b]\n"
                      "                     [--map-size N] [--view-size WxH] [--samples S] [--frames K]\n"
                      "                     [--frame WxH] [--repetitions N] [--budgets MS,MS,...]\n"
                      "  every method with a sweep of its settings on every built-in scene, against the\n"
                      "  ray-traced ground truth: DIR/index.html (the report), DIR/results.csv,\n"
                      "  DIR/chart.png, DIR/<scene>/*.png|exr\n"
+                     "  --scene: names, or a SET: opaque (the five shadow-map scenes), deep (hair,\n"
+                     "  fog, layers: point lights, exact truth) and all (the default)\n"
                      "  scored on --view-size receivers (default 320x240, 576 rays each, 3 frames for\n"
                      "  flicker); timed on --frame receivers (default 1920x1080): the map's and the\n"
                      "  receivers' work apart, medians of --repetitions (default 5, at least 5)\n"

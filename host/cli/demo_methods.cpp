@@ -66,6 +66,48 @@ constexpr float kDemoMsmDepthBias = 3e-4f;
 // 0.0321, 0 (off) 99.21% at 0.0310 (docs/moments.md, "The msm-soft halo").
 constexpr float kDemoMsmSoftPlaneBias = 0.5f;
 
+// A point light (the deep scenes') has no size, and the soft methods need
+// one: PCSS refuses light_size 0 and a distance field's k would be infinite.
+// They shade it as the smallest square light the map can show: one whose
+// penumbra, from a blocker to the receiver at the scene's reference depths,
+// is one texel wide. Their sweeps (0.5x, 1x, 2x) then span a half to two
+// texels, the hard-shadow limit each method reaches at this resolution; the
+// truth stays the point light's, exact per receiver (docs/deep_shadow_maps.md,
+// "The demo on the deep scenes").
+reference::Scene with_light_of_side(reference::Scene scene, double side)
+{
+    scene.light.shape = reference::LightShape::Rectangle;
+    scene.light.width = scene.light.height = side;
+    return scene;
+}
+
+double one_texel_light_side(const reference::Scene& scene, int map_size)
+{
+    const reference::ReferenceDepths depths = reference::reference_depths(scene);
+    // The penumbra width is linear in the light's side: measure a 1 m one
+    // (> 0: the reference blocker always lies in front of the receiver).
+    const double per_metre = reference::penumbra_width(with_light_of_side(scene, 1.0), depths.z_receiver,
+                                                       depths.z_blocker);
+    return 1.0 / (double(map_size) * per_metre);
+}
+
+// The scene the soft methods size their filters for: itself, or under a
+// point light the one-texel stand-in (the side measured on frame 0, so the
+// shifted frames keep it and no shade step pays for the measurement).
+struct SoftLight {
+    double side = 0;  // 0: the scene's own (area) light
+    reference::Scene apply(const reference::Scene& scene) const
+    {
+        return side > 0 ? with_light_of_side(scene, side) : scene;
+    }
+};
+
+SoftLight soft_light_for(const reference::Scene& scene, int map_size)
+{
+    if (scene.light.shape != reference::LightShape::Point) return {};
+    return {one_texel_light_side(scene, map_size)};
+}
+
 // The box methods sweep the radius (EVSM with the exact table's default
 // exponents).
 std::vector<SweepPoint> radius_sweep(std::optional<float> depth_bias = std::nullopt)
@@ -184,7 +226,7 @@ private:
 // What the distance-field rows trace: the baked grid or the primitives.
 enum class SdfSource { Grid, Analytic };
 
-DemoMethod sdf_method(const reference::Scene& scene, int map_size, SdfSource source)
+DemoMethod sdf_method(const reference::Scene& scene, int map_size, const SoftLight& light, SdfSource source)
 {
     const bool analytic = source == SdfSource::Analytic;
     DemoMethod m{.name = analytic ? "sdf-analytic" : "sdf", .settings = {}, .preview_setting = kFirstSetting};
@@ -205,9 +247,10 @@ DemoMethod sdf_method(const reference::Scene& scene, int map_size, SdfSource sou
         // No per-map step: the grid is baked offline (and not timed).
         m.settings.push_back({.label = v.label,
                               .prepare = [](Context&, const DemoFrame&) { return DemoPrepared(); },
-                              .shade = [grid, primitives, v](Context& ctx, const DemoFrame& f,
-                                                             const reference::Receivers& r, const DemoPrepared&) {
-                                  SdfOptions o = sdf_options_for(f.scene, v.estimate);
+                              .shade = [grid, primitives, v, light](Context& ctx, const DemoFrame& f,
+                                                                    const reference::Receivers& r,
+                                                                    const DemoPrepared&) {
+                                  SdfOptions o = sdf_options_for(light.apply(f.scene), v.estimate);
                                   o.k *= v.k_scale;
                                   return grid ? sdf_shadows(ctx, grid->get(), r.world_position, &r.normal, o)
                                               : sdf_shadows(ctx, *primitives, r.world_position, &r.normal, o);
@@ -245,7 +288,42 @@ DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vecto
     return m;
 }
 
+// Deep shadow maps, by the method table's `dsm` entry, on the frame's deep
+// map: the bilinear (tent r = 0) lookup, the paper's texture-like filter,
+// then one texel wider (tent r = 1) and the box of 3 x 3 pixels, at the
+// lookup's default depth bias.
+DemoMethod deep_method()
+{
+    const Method& method = find_method("dsm");
+    DemoMethod m{.name = method.name, .settings = {}, .preview_setting = kFirstSetting, .input = method.input};
+    struct Point {
+        const char* label;
+        DeepFilter filter;
+        int radius;
+    };
+    for (Point point : {Point{"tent r=0", DeepFilter::Tent, 0}, Point{"tent r=1", DeepFilter::Tent, 1},
+                        Point{"box r=1", DeepFilter::Box, 1}}) {
+        MethodSettings s;
+        s.deep_filter = point.filter;
+        s.radius = point.radius;
+        m.settings.push_back(
+            {.label = point.label,
+             .prepare = [&method, s](Context& ctx, const DemoFrame& f) -> DemoPrepared {
+                 return std::make_shared<const PreparedMap>(method.prepare_deep(ctx, *f.deep_map, s));
+             },
+             .shade = [&method, s](Context& ctx, const DemoFrame&, const reference::Receivers& rx,
+                                   const DemoPrepared& prepared) {
+                 Image out(rx.light_uvz.width(), rx.light_uvz.height(), 1);
+                 method.shade(ctx, *std::static_pointer_cast<const PreparedMap>(prepared), rx.light_uvz, s, out);
+                 return out;
+             }});
+    }
+    return m;
+}
+
 }  // namespace
+
+int demo_deep_map_size(int map_size) { return std::clamp(map_size / 2, 1, 512); }
 
 Image run_setting(Context& context, const DemoSetting& setting, const DemoFrame& frame)
 {
@@ -254,7 +332,10 @@ Image run_setting(Context& context, const DemoSetting& setting, const DemoFrame&
 
 std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size)
 {
-    DemoMethod sdf_grid = sdf_method(scene, map_size, SdfSource::Grid);
+    // The soft methods' sizes come from the light they shade (SoftLight).
+    const SoftLight light = soft_light_for(scene, map_size);
+    const reference::Scene sized = light.apply(scene);
+    DemoMethod sdf_grid = sdf_method(scene, map_size, light, SdfSource::Grid);
     const DemoMethod vsm = table_method("vsm", radius_sweep());
     const DemoMethod pcf_disc = table_method("pcf-disc", pcf_disc_sweep());
     const std::vector<int> vsm_small_radii = {0, 1}, sdf_inner = {0};  // blurred: the noisiest settings
@@ -264,20 +345,21 @@ std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size
     msm_soft_base.plane_bias = kDemoMsmSoftPlaneBias;
     return {vsm,
             blurred_method(vsm, "vsm+blur", vsm_small_radii),
-            table_method("vssm", light_sweep(scene, map_size)),
+            table_method("vssm", light_sweep(sized, map_size)),
             table_method("msm", radius_sweep(kDemoMsmDepthBias)),
-            table_method("msm-soft", light_sweep(scene, map_size, msm_soft_base)),
+            table_method("msm-soft", light_sweep(sized, map_size, msm_soft_base)),
             table_method("evsm2", radius_sweep()),
             table_method("evsm4", radius_sweep()),
-            table_method("pcss", light_sweep(scene, map_size, pcf_settings())),
-            table_method("burley", burley_sweep(scene, map_size)),
+            table_method("pcss", light_sweep(sized, map_size, pcf_settings())),
+            table_method("burley", burley_sweep(sized, map_size)),
             sdf_grid,
             blurred_method(sdf_grid, "sdf+blur", sdf_inner),
-            sdf_method(scene, map_size, SdfSource::Analytic),
+            sdf_method(scene, map_size, light, SdfSource::Analytic),
             table_method("pcf", pcf_sweep()),
             table_method("pcf-gauss", pcf_gauss_sweep()),
             pcf_disc,
-            blurred_method(pcf_disc, "pcf-disc+blur", disc_few_taps)};
+            blurred_method(pcf_disc, "pcf-disc+blur", disc_few_taps),
+            deep_method()};
 }
 
 }  // namespace penumbra::cli

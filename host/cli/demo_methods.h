@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "penumbra/context.h"
+#include "penumbra/deep_shadow_map.h"
 #include "penumbra/image.h"
+#include "penumbra/methods.h"
 #include "penumbra/reference/render.h"
 #include "penumbra/reference/scene.h"
 
@@ -20,6 +22,9 @@ struct DemoFrame {
     Image shadow_map;                  // channel Z
     reference::Receivers receivers;    // light_uvz etc.
     Image truth;                       // channel Y
+    // The frame's deep shadow map, rendered (not timed, as the shadow map's
+    // render is not) only when a wanted method reads one; null otherwise.
+    std::shared_ptr<const DeepShadowMap> deep_map;
 };
 
 // What a setting's per-map step made for its per-receiver step (a method's
@@ -43,7 +48,15 @@ struct DemoMethod {
     std::string name;                  // e.g. "vsm"
     std::vector<DemoSetting> settings;
     int preview_setting = 0;           // index into settings: the one whose images the demo writes
+    MethodInput input = MethodInput::ShadowMap;  // what its settings read from a frame
 };
+
+// The deep map the demo renders per frame for a method that reads one: half
+// the shadow map's side, at most 512 (a pixel holds 2 x 2 texels' worth of
+// 16 samples: 4 M rays a frame at 512^2), 16 samples per pixel, the default
+// tolerance and box filter of `penumbra dsm-build`.
+int demo_deep_map_size(int map_size);
+inline constexpr int kDemoDeepSamples = 16;
 
 // Every method of the library, its settings chosen for `scene` (light size
 // from the scene's geometry) and a map of `map_size` texels.

@@ -79,7 +79,7 @@ void expect_report_names_only_existing_pictures(const fs::path& out, const std::
     }
     EXPECT_TRUE(named.count("chart.png"));
     EXPECT_TRUE(named.count("error_scale.png"));
-    for (const std::string& scene : reference::builtin_scene_names()) {
+    for (const std::string& scene : reference::builtin_scene_names(reference::SceneSet::All)) {
         EXPECT_TRUE(named.count(scene + "/truth.png")) << scene;
         for (const std::string& method : methods) {
             EXPECT_TRUE(named.count(scene + "/" + method + ".png")) << scene << " " << method;
@@ -124,7 +124,9 @@ TEST(Demo, QuickRunCoversEveryMethodOnEverySceneWithoutNaN)
         EXPECT_LE(receivers, high) << line;
         EXPECT_GE(std::stoi(cells[10]), 5) << line;  // medians of at least 5
     }
-    for (const std::string& scene : reference::builtin_scene_names()) {
+    // Every scene by default, the deep ones (point lights) included: every
+    // method gives a finite row on hair, fog and layers too.
+    for (const std::string& scene : reference::builtin_scene_names(reference::SceneSet::All)) {
         EXPECT_EQ(methods_per_scene[scene], all_methods) << scene;
         EXPECT_TRUE(fs::exists(out / scene / "truth.png"));
         for (const std::string& method : all_methods) {
@@ -133,6 +135,7 @@ TEST(Demo, QuickRunCoversEveryMethodOnEverySceneWithoutNaN)
         }
     }
     EXPECT_TRUE(all_methods.count("vsm") && all_methods.count("vssm"));
+    EXPECT_TRUE(all_methods.count("dsm"));  // on a deep map the demo renders per frame
     EXPECT_TRUE(fs::exists(out / "chart.png"));
     expect_report_names_only_existing_pictures(out, all_methods);
     fs::remove_all(out);
@@ -169,6 +172,27 @@ TEST(Demo, ALogGetsOneProgressLinePerSceneAndMethod)
     const std::vector<std::string> expected = {"contact: ground truth, 2 frames", "contact: vsm", "contact: pcf",
                                                "contact: timing, 6 settings x 5 on 240x135"};
     EXPECT_EQ(units, expected);
+    fs::remove_all(out);
+}
+
+// --scene takes the sets opaque, deep and all beside names, each scene once,
+// in the order given.
+TEST(Demo, SceneSetsExpandInOrderEachSceneOnce)
+{
+    const fs::path out = scratch("demo_sets");
+    ASSERT_EQ(run("demo --quick --frame 32x18 --view-size 32x24 --scene layers,deep --method pcf --out " + out.string(),
+                  out / "log.txt"),
+              0)
+        << std::ifstream(out / "log.txt").rdbuf();
+    std::ifstream csv(out / "results.csv");
+    std::string line;
+    std::getline(csv, line);
+    std::vector<std::string> scenes;
+    while (std::getline(csv, line)) {
+        const std::string scene = split_csv_line(line)[0];
+        if (scenes.empty() || scenes.back() != scene) scenes.push_back(scene);
+    }
+    EXPECT_EQ(scenes, (std::vector<std::string>{"layers", "hair", "fog"}));
     fs::remove_all(out);
 }
 
