@@ -91,7 +91,7 @@ static void dialect_upair_probe(const u32* table, const int* index_a, const int*
 {
     const pn_dims dims{kLanes, 1, kLanes, kLanes};
     const auto lanes = [&](const int* index) {
-        return pn_uint_to_int_lanes(pn_uload(reinterpret_cast<const u32*>(index), dims, 0, 0));
+        return pn_uint_to_index(pn_uload(reinterpret_cast<const u32*>(index), dims, 0, 0));
     };
     probe_store(joined, pn_upair_join(pn_ugather_upair(table, lanes(index_a)) - pn_ugather_upair(table, lanes(index_b))));
 }
