@@ -18,14 +18,16 @@
 //          is the fraction a renderer's pixel shows, and depends on no
 //          method's resolution or filter.
 // Every method is evaluated once, at the pixel's centre receiver.
-// The deep map is evaluated on the host by the lookup contract of
-// penumbra/deep_shadow_map.h (DeepShadowMap::visibility per pixel) with the
-// nearest pixel, the bilinear (tent) weights of the four nearest pixel
-// centres or a box of pixels, each tap at the receiver plane's depth there
-// (the receiver's depth slope in light space, from its view neighbours) less
-// half the plane's depth change across a pixel (a box pixel averages its
-// footprint, and a sloped receiver crosses it at every depth of that span),
-// or at the receiver's depth less a constant.
+// The deep map is evaluated with the nearest pixel, the bilinear (tent)
+// weights of the four nearest pixel centres or a box of pixels, each tap
+//  - at the receiver's depth less a constant: the library's lookup (the
+//    method table's `dsm`, deep_lookup, on the best backend), or
+//  - at the receiver plane's depth there (the receiver's depth slope in light
+//    space, from its view neighbours) less half the plane's depth change
+//    across a pixel (a box pixel averages its footprint, and a sloped
+//    receiver crosses it at every depth of that span): an experiment the
+//    lookup kernel does not offer, evaluated here on the host by the lookup
+//    contract of penumbra/deep_shadow_map.h (DeepShadowMap::visibility).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -36,6 +38,7 @@
 #include <vector>
 
 #include "penumbra/context.h"
+#include "penumbra/deep_lookup.h"
 #include "penumbra/deep_shadow_map.h"
 #include "penumbra/methods.h"
 #include "penumbra/reference.h"
@@ -144,7 +147,7 @@ DepthSlope depth_slope(const reference::Receivers& rx, int x, int y)
 //             the plane's depth change across a pixel (and 1e-4);
 //   constant  the receiver's depth less 0.003 (kDeepDefaultBias, the `dsm`
 //             lookup's default, which DeepMap.NearestPixelLookupFollowsThePointLightTruth
-//             chose for fog and layers).
+//             chose for fog and layers): the library's lookup itself.
 struct Lookup {
     enum Kind { Nearest, Bilinear, Box } kind;
     int radius = 0;
@@ -191,8 +194,19 @@ float lookup(const DeepShadowMap& map, const Lookup& filter, float u, float v, f
     return float(sum / ((2 * r + 1) * (2 * r + 1)));
 }
 
-Image deep_estimate(const DeepShadowMap& map, const Lookup& filter, const reference::Receivers& rx)
+// The library's lookup with the filter's constant-bias rule.
+Image library_estimate(Context& ctx, const DeepShadowMap& map, const Lookup& filter, const reference::Receivers& rx)
 {
+    MethodSettings s;
+    s.deep_filter = filter.kind == Lookup::Bilinear ? DeepFilter::Tent : DeepFilter::Box;
+    s.radius = filter.radius;
+    s.depth_bias = kConstantDeepBias;
+    return find_method("dsm").run(ctx, map, rx.light_uvz, s);
+}
+
+Image deep_estimate(Context& ctx, const DeepShadowMap& map, const Lookup& filter, const reference::Receivers& rx)
+{
+    if (!filter.plane) return library_estimate(ctx, map, filter, rx);
     Image out(rx.width(), rx.height(), 1);
     for (int y = 0; y < rx.height(); ++y)
         for (int x = 0; x < rx.width(); ++x)
@@ -248,13 +262,13 @@ DeepRun build_deep(const reference::Scene& scene, const Config& c, int samples, 
     return run;
 }
 
-void deep_rows(const DeepRun& run, const Truths& t, std::vector<Row>& rows)
+void deep_rows(Context& ctx, const DeepRun& run, const Truths& t, std::vector<Row>& rows)
 {
     for (const Lookup& filter : kLookups) {
         Row row = run.row;
         row.method = filter.name();
         if (filter.kind == Lookup::Box) row.setting += " r=" + std::to_string(filter.radius);
-        score(row, deep_estimate(run.map, filter, t.rx), t);
+        score(row, deep_estimate(ctx, run.map, filter, t.rx), t);
         rows.push_back(row);
     }
 }
@@ -347,13 +361,13 @@ int main(int argc, char** argv)
         std::vector<Row> scene_rows;
         for (int n : c.samples) {
             const DeepRun run = build_deep(scene, c, n, 1.0);
-            deep_rows(run, t, scene_rows);
+            deep_rows(ctx, run, t, scene_rows);
             if (std::find(c.equal_memory_samples.begin(), c.equal_memory_samples.end(), n) !=
                 c.equal_memory_samples.end())
                 equal_memory_rows(ctx, scene, t, run.row, scene_rows);
         }
         const int tolerance_samples = 16;
-        for (double scale : c.tolerance_scales) deep_rows(build_deep(scene, c, tolerance_samples, scale), t, scene_rows);
+        for (double scale : c.tolerance_scales) deep_rows(ctx, build_deep(scene, c, tolerance_samples, scale), t, scene_rows);
         print_rows(scene_rows);
         rows.insert(rows.end(), scene_rows.begin(), scene_rows.end());
         write_csv(csv, rows);  // after each scene, so a long run leaves its rows

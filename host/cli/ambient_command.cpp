@@ -146,6 +146,17 @@ Error reworded(const Error& e, const std::string& file)
     return Error(e.category(), "ambient", file + ": " + message);
 }
 
+// The rig and volume readers name the file and the field; the line is the command's.
+template <class Load>
+auto read_as_command(Load&& load, const std::string& path)
+{
+    try {
+        return load(path);
+    } catch (const Error& e) {
+        throw e.as_operation("ambient");
+    }
+}
+
 }  // namespace
 
 int ambient_command(const std::vector<std::string>& argv)
@@ -190,9 +201,11 @@ int ambient_command(const std::vector<std::string>& argv)
         if (scene.ambient->dark_rig) lighting.dark = projected(*scene.ambient->dark_rig, o, name);
         lighting.volumes = packed(scene.ambient->volumes, name);
     } else {
-        lighting.light = projected(reference::load_rig(rig_path), o, rig_path);
-        if (const auto dark = args.get("--dark-rig")) lighting.dark = projected(reference::load_rig(*dark), o, *dark);
-        if (const auto v = args.get("--volumes")) lighting.volumes = packed(reference::load_volumes(*v), *v);
+        const auto rig = [](const std::string& path) { return reference::load_rig(path); };
+        const auto volumes = [](const std::string& path) { return reference::load_volumes(path); };
+        lighting.light = projected(read_as_command(rig, rig_path), o, rig_path);
+        if (const auto dark = args.get("--dark-rig")) lighting.dark = projected(read_as_command(rig, *dark), o, *dark);
+        if (const auto v = args.get("--volumes")) lighting.volumes = packed(read_as_command(volumes, *v), *v);
     }
     lighting.cheap_dark = args.flag("--cheap-dark");
     lighting.zero_normals = parse_zero_normals(args.text("--zero-normals", "error"));

@@ -160,6 +160,8 @@ TEST_F(AmbientCli, BadInputExitsWithOneLine)
     expect_bad_input(ambient("--rig " + path("nan.json")), "not valid JSON");
     expect_bad_input(ambient("--rig " + path("huge.json")), "not valid JSON");
     expect_bad_input(ambient("--rig " + path("empty.json")), "lights: must hold at least one light");
+    EXPECT_EQ(run(ambient("--rig " + path("empty.json"))).err.rfind("penumbra ambient: ", 0), 0u)
+        << "the line is the command's, not its JSON reader's";
     expect_bad_input(ambient("--rig " + path("zero.json")), "lights[0].direction is zero");
     expect_bad_input(ambient("--rig " + path("typo.json")), "lights[0].intensty: unknown field");
     expect_bad_input(ambient("--rig " + path("badtype.json")), "lights[0].direction: must be an array of 3 numbers");
