@@ -21,11 +21,12 @@ bash tests/fuzz/make_corpus.sh "$build" "$build/corpus/seeds"
 mkdir -p "$build/artifacts"
 status=0
 # A fixed seed and a fixed number of runs per target (about FUZZ_SECONDS on an
-# idle 2-core machine: EXR ~1,500 runs/s, deep EXR ~700, scene JSON ~9,000, grids ~4,500), so
+# idle 2-core machine: EXR ~1,500 runs/s, deep EXR ~700, scene JSON ~9,000, grids ~4,500,
+# ambient JSON ~9,000), so
 # that CI's verdict does not depend on the machine's speed: the same inputs are
 # tried every time; twice FUZZ_SECONDS caps a slow machine. Longer campaigns:
 # tests/fuzz/campaign.sh.
-for target in exr:exr_reader_fuzz:1500 deep:deep_exr_reader_fuzz:700 scene:scene_json_fuzz:9000 grid:sdf_grid_fuzz:4500; do
+for target in exr:exr_reader_fuzz:1500 deep:deep_exr_reader_fuzz:700 scene:scene_json_fuzz:9000 grid:sdf_grid_fuzz:4500 ambient:ambient_json_fuzz:9000; do
   IFS=: read -r seeds fuzzer rate <<<"$target"
   mkdir -p "$build/corpus/$seeds"
   echo "--- $fuzzer, $((rate * seconds)) runs, seed 1"
