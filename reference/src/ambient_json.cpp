@@ -88,12 +88,7 @@ template <class Read>
 auto parse(std::string_view text, std::string_view source_name, std::string_view operation, Read&& read)
 {
     const std::string context = std::string(source_name) + ": ";
-    json root;
-    try {
-        root = json::parse(text.begin(), text.end());
-    } catch (const json::exception& e) {
-        throw Error(ErrorCategory::Io, operation, context + "not valid JSON (" + e.what() + ")");
-    }
+    const json root = parse_json_document(text, context, operation);
     try {
         return read(Reader(context, operation), root);
     } catch (const json::exception& e) {

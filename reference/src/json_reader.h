@@ -110,4 +110,16 @@ private:
 
 json to_json(Vec3 v);
 
+// The document in `text`; Error(Io, operation, context + "not valid JSON (...)")
+// for one that is not JSON: parse_error, and out_of_range for a number beyond
+// a double (1e999). `context` is the source's name and ": ".
+inline json parse_json_document(std::string_view text, const std::string& context, std::string_view operation)
+{
+    try {
+        return json::parse(text.begin(), text.end());
+    } catch (const json::exception& e) {
+        throw Error(ErrorCategory::Io, operation, context + "not valid JSON (" + e.what() + ")");
+    }
+}
+
 }  // namespace penumbra::reference

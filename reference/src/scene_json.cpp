@@ -225,13 +225,7 @@ json light_camera_to_json(const LightCamera& camera)
 Scene scene_from_json(std::string_view text, std::string_view source_name)
 {
     const std::string context = std::string(source_name) + ": ";
-    json root;
-    try {
-        root = json::parse(text.begin(), text.end());
-    } catch (const json::exception& e) {
-        // parse_error, and out_of_range for a number beyond a double (1e999).
-        throw Error(ErrorCategory::Io, kLoad, context + "not valid JSON (" + e.what() + ")");
-    }
+    const json root = parse_json_document(text, context, kLoad);
     Scene scene;
     try {
         scene = read_scene(Reader(context), root);
