@@ -65,6 +65,7 @@
     X(pcf, pcf_disc, pixel, PcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
     X(pcf, pcss, pixel, SoftPcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))              \
     X(pcf, burley, pixel, SoftPcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))            \
+    X(pcf, cascade_mask, pixel, CascadeParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
     X(ambient, ambient_sh, pixel, AmbientParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))    \
     X(ambient, ambient_volumes, pixel, AmbientParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
     X(dsm, dsm_lookup, pixel, DsmParams,                                                                   \

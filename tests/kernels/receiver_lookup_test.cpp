@@ -25,6 +25,7 @@
 
 #include "host/backend/backend.h"
 #include "penumbra/ambient.h"
+#include "penumbra/cascades.h"
 #include "penumbra/chebyshev.h"
 #include "penumbra/deep_shadow_map.h"
 #include "penumbra/moments.h"
@@ -145,6 +146,30 @@ LookupRun ambient_volumes_run()
     };
 }
 
+// One cascade: the map itself, the receivers' (u, v, z) as world positions
+// (identity frame), selected by split depth so that every receiver is in it.
+LookupRun cascade_mask_run()
+{
+    return [](Context& context, const Image& receivers, Image& out) {
+        CascadeShadows s;
+        s.axis_u = {1, 0, 0}, s.axis_v = {0, 1, 0}, s.axis_z = {0, 0, 1};
+        s.cascades = {CascadeFrame{1, 0, 1, 0, 1, 0, 2}};
+        s.maps = depth_map();
+        Image rx(receivers.width(), receivers.height(), kCascadeReceiverChannels);
+        for (int y = 0; y < rx.height(); ++y)
+            for (int x = 0; x < rx.width(); ++x) {
+                for (int c = 0; c < 3; ++c) rx.at(c, x, y) = receivers.at(c, x, y);
+                rx.at(3, x, y) = 1;
+                rx.at(4, x, y) = 1;
+            }
+        CascadeOptions o;
+        o.selection = CascadeSelection::SplitDepth;
+        const Image mask = cascade_mask(context, s, rx, o);
+        for (int y = 0; y < out.height(); ++y)
+            for (int x = 0; x < out.width(); ++x) out.at(0, x, y) = mask.at(0, x, y);
+    };
+}
+
 LookupRun ambient_sh_run()
 {
     return [](Context& context, const Image& receivers, Image& out) {
@@ -235,6 +260,8 @@ LookupRun lookup_case(const Sources& s)
         p.max_radius = 0.3f;
         p.bias_slope = 2.0f;
         if (name == "pcss" || name == "burley") return map_run_of<K>(depth_map(), p, &Params::depth);
+    } else if constexpr (std::is_same_v<Params, CascadeParams>) {
+        if (name == "cascade_mask") return cascade_mask_run();
     } else if constexpr (std::is_same_v<Params, AmbientParams>) {
         if (name == "ambient_volumes") return ambient_volumes_run();
         if (name == "ambient_sh") return ambient_sh_run();
