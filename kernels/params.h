@@ -278,6 +278,26 @@ typedef struct {
     float bias_max[PN_CASCADES_MAX];
 } CascadeParams;
 
+/* Volumetric-obscurance SSAO with paired samples (kernels/ssao_vo.h;
+ * host/src/ssao.cpp). The pattern and the rotation tile are the source. */
+#define PN_SSAO_PAIRED 0      /* an unusable sample: its partner's inverse, else 1/2 */
+#define PN_SSAO_ZERO 1        /* an unusable sample: 0 */
+#define PN_SSAO_HALF 2        /* an unusable sample: 1/2 */
+#define PN_SSAO_RENORMALISE 3 /* unusable samples dropped, the weights renormalised */
+typedef struct {
+    pn_dims depth;       /* one plane: view depth, world units, 0 = no surface */
+    pn_dims out;         /* one plane: obscurance or accessibility */
+    int pairs;           /* sample pairs in the pattern */
+    int unusable;        /* PN_SSAO_* */
+    int rotate;          /* 1: the 4x4 rotation tile turns the pattern per pixel */
+    int accessibility;   /* 1: out = 1 - saturate(2 o - 1); 0: out = o */
+    float radius;        /* R: the sphere's radius, world units */
+    float focal;         /* focal length in pixels: (height / 2) / tan(vertical fov / 2) */
+    float max_pixels;    /* the screen radius's cap, pixels */
+    float falloff;       /* > 1: occluders nearer than the centre by falloff R' or more count not */
+    float centre_weight; /* the centre line's share of the sphere's volume */
+} SsaoParams;
+
 #ifdef __cplusplus
 }  /* namespace penumbra */
 #endif

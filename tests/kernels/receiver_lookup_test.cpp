@@ -29,6 +29,7 @@
 #include "penumbra/chebyshev.h"
 #include "penumbra/deep_shadow_map.h"
 #include "penumbra/moments.h"
+#include "penumbra/ssao.h"
 #include "support/backends.h"
 #include "support/errors.h"
 #include "support/maps.h"
@@ -186,6 +187,22 @@ LookupRun ambient_sh_run()
     };
 }
 
+// ssao_vo reads its pattern as the source and a view depth as the
+// receivers: the receivers' random z plane as depths, the sphere a few
+// pixels wide (no cap), the AO term: pits are occluded, peaks open.
+LookupRun ssao_vo_run()
+{
+    return [](Context& context, const Image& receivers, Image& out) {
+        Image depth(receivers.width(), receivers.height(), 1);
+        for (int y = 0; y < depth.height(); ++y)
+            for (int x = 0; x < depth.width(); ++x) depth.at(0, x, y) = receivers.at(2, x, y);
+        SsaoOptions o;
+        o.radius = 0.3;
+        o.max_screen_radius = 1.0;
+        ssao_obscurance(context, depth, 90.0, o, out);
+    };
+}
+
 // The Params of each lookup-shaped entry, as its operation fills them
 // (host/src/chebyshev.cpp, moments.cpp); an empty run for an entry with no case.
 template <KernelId K>
@@ -265,6 +282,8 @@ LookupRun lookup_case(const Sources& s)
     } else if constexpr (std::is_same_v<Params, AmbientParams>) {
         if (name == "ambient_volumes") return ambient_volumes_run();
         if (name == "ambient_sh") return ambient_sh_run();
+    } else if constexpr (std::is_same_v<Params, SsaoParams>) {
+        if (name == "ssao_vo") return ssao_vo_run();
     }
     return {};
 }
