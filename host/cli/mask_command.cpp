@@ -20,7 +20,7 @@ namespace penumbra::cli {
 
 const std::vector<MaskStep>& mask_steps()
 {
-    static const std::vector<MaskStep> steps = {ao_mask_step()};
+    static const std::vector<MaskStep> steps = {ao_mask_step(), shadow_mask_step()};
     return steps;
 }
 

@@ -48,4 +48,8 @@ const std::vector<MaskStep>& mask_steps();
 // The ssao-vo step: channel `ao`, the accessibility term (1 open).
 MaskStep ao_mask_step();
 
+// The cascaded shadow step: channels `shadow` (the world light) and `shadow2`
+// (the character light) where the scene has them (mask_shadow_step.cpp).
+MaskStep shadow_mask_step();
+
 }  // namespace penumbra::cli

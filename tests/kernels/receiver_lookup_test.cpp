@@ -163,8 +163,9 @@ LookupRun cascade_mask_run()
                 rx.at(3, x, y) = 1;
                 rx.at(4, x, y) = 1;
             }
-        CascadeOptions o;
+        CascadeOptions o;  // biases of the other PCF cases' size: a texel of this map is 1/9
         o.selection = CascadeSelection::SplitDepth;
+        o.bias_min = 0.01f, o.static_bias = 0.02f, o.bias_max = 0.1f;
         const Image mask = cascade_mask(context, s, rx, o);
         for (int y = 0; y < out.height(); ++y)
             for (int x = 0; x < out.width(); ++x) out.at(0, x, y) = mask.at(0, x, y);
