@@ -94,6 +94,9 @@ double largest_deviation_beyond(const Image& o, const Image& depth, int margin, 
 // At 80 degrees the near samples fall beyond the falloff: paired samples
 // still give 1/2 everywhere (the partner's inverse is exact on a plane), at
 // every rotation of the tile and every azimuth, while the alternatives drift.
+// "Exact" is up to the float32 depths' rounding: one ulp of z = 4 (4.8e-7)
+// over a line 0.05 long (the capped sphere here) moves e by 1e-5 a tap:
+// the bound is 2e-5, a thousandth of the alternatives' drift.
 PN_BACKEND_TEST(SsaoVoTest, TiltedPlanesAreHalfOccludedWithPairsAtAnyRotation)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
@@ -108,10 +111,10 @@ PN_BACKEND_TEST(SsaoVoTest, TiltedPlanesAreHalfOccludedWithPairsAtAnyRotation)
                 const std::string where = "tilt " + std::to_string(tilt_degrees) + " azimuth " +
                                           std::to_string(azimuth) + " rule " + std::to_string(r);
                 if (kRules[r] == SsaoUnusable::Paired) {
-                    EXPECT_LE(largest_deviation(o, 0), 2e-6) << where;
+                    EXPECT_LE(largest_deviation(o, 0), 2e-5) << where;
                 }
                 if (tilt_degrees == 45.0) {
-                    EXPECT_LE(largest_deviation_beyond(o, depth, margin, float(z0)), 2e-6) << where;
+                    EXPECT_LE(largest_deviation_beyond(o, depth, margin, float(z0)), 2e-5) << where;
                 }
                 drift[r] = std::max(drift[r], largest_deviation(o, margin));
             }
