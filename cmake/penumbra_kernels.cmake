@@ -29,9 +29,11 @@ set(PENUMBRA_KERNEL_FILES
   kernels/hammersley.h
   kernels/pcss.h
   kernels/burley.h
+  kernels/cascades.h
   kernels/ambient_volumes.h
   kernels/ambient_sh.h
   kernels/dsm_lookup.h
+  kernels/ssao_vo.h
 )
 
 set(_gen ${CMAKE_CURRENT_BINARY_DIR}/generated)
@@ -64,9 +66,10 @@ set(PENUMBRA_CL_FAMILY_FILES_moments
   kernels/moment_table.h kernels/chebyshev.h kernels/box_window.h kernels/vsm.h kernels/vssm.h kernels/moment_quantize.h
   kernels/exponential_warp.h kernels/encoded_table.h kernels/evsm.h kernels/msm.h kernels/receiver_slope.h kernels/msm_soft.h)
 set(PENUMBRA_CL_FAMILY_FILES_pcf kernels/receiver_slope.h kernels/depth_bias.h kernels/pcf.h kernels/pcf_gauss.h kernels/pcf_disc.h
-    kernels/hammersley.h kernels/pcss.h kernels/burley.h)
+    kernels/hammersley.h kernels/pcss.h kernels/burley.h kernels/cascades.h)
 set(PENUMBRA_CL_FAMILY_FILES_ambient kernels/ambient_volumes.h kernels/ambient_sh.h)
 set(PENUMBRA_CL_FAMILY_FILES_dsm kernels/receiver_slope.h kernels/dsm_lookup.h)
+set(PENUMBRA_CL_FAMILY_FILES_ssao kernels/ssao_vo.h)
 
 set(_table ${CMAKE_CURRENT_SOURCE_DIR}/kernels/kernel_table.h)
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_table})  # a new family reconfigures

@@ -26,7 +26,7 @@
 #define PENUMBRA_KERNEL_TABLE_H
 
 /* The families, each an OpenCL program of its own. */
-#define PN_KERNEL_FAMILIES(F) F(moment_table) F(chebyshev) F(bilateral) F(sdf) F(moments) F(pcf) F(ambient) F(dsm)
+#define PN_KERNEL_FAMILIES(F) F(moment_table) F(chebyshev) F(bilateral) F(sdf) F(moments) F(pcf) F(ambient) F(dsm) F(ssao)
 
 #define PN_KERNEL_TABLE(X)                                                                                  \
     X(moment_table, sat_bands_float, task, SatParams,                                                    \
@@ -65,9 +65,11 @@
     X(pcf, pcf_disc, pixel, PcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))             \
     X(pcf, pcss, pixel, SoftPcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))              \
     X(pcf, burley, pixel, SoftPcfParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))            \
+    X(pcf, cascade_mask, pixel, CascadeParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))      \
     X(ambient, ambient_sh, pixel, AmbientParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))    \
     X(ambient, ambient_volumes, pixel, AmbientParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
     X(dsm, dsm_lookup, pixel, DsmParams,                                                                   \
-      (PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
+      (PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))   \
+    X(ssao, ssao_vo, pixel, SsaoParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
 
 #endif

@@ -249,6 +249,55 @@ typedef struct {
     float bias;        /* subtracted from the receiver's depth */
 } DsmParams;
 
+/* The cascaded shadow mask (kernels/cascades.h; penumbra/cascades.h). Per
+ * cascade c (finest first) a world point p lands at
+ *     u = dot(p, axis_u) u_scale[c] + u_offset[c]   (v, z alike)
+ * in [0, 1]^3 inside its orthographic box; biases are in that cascade's depth
+ * units. Keep PN_CASCADES_MAX equal to penumbra::kMaxCascades. */
+#define PN_CASCADES_MAX 4
+#define PN_CASCADE_SELECT_BOX 0   /* the finest bounding box holding the PCF footprint (Zhang 2009) */
+#define PN_CASCADE_SELECT_SPLIT 1 /* the first split whose far view depth lies beyond the pixel */
+#define PN_CASCADE_PLANES 5       /* receivers: world x, y, z, view depth, surface flag */
+typedef struct {
+    pn_dims maps;      /* one plane: the cascades' maps stacked, cascade c in rows [c map_height, (c+1) map_height) */
+    pn_dims receivers; /* PN_CASCADE_PLANES planes */
+    pn_dims out;       /* 2 planes: visibility, the cascade used (-1 for none) */
+    int cascades;      /* 1 .. PN_CASCADES_MAX */
+    int map_height;    /* rows of one cascade's map */
+    int select;        /* PN_CASCADE_SELECT_* */
+    int grid;          /* Gaussian PCF taps per side (4: Toy Story 3) */
+    float sigma;       /* its standard deviation, texels */
+    float axis_u[3], axis_v[3], axis_z[3]; /* the light's frame (unit vectors, world) */
+    float u_scale[PN_CASCADES_MAX], u_offset[PN_CASCADES_MAX];
+    float v_scale[PN_CASCADES_MAX], v_offset[PN_CASCADES_MAX];
+    float z_scale[PN_CASCADES_MAX], z_offset[PN_CASCADES_MAX];
+    float margin[PN_CASCADES_MAX];      /* box selection: texture units kept clear of the edge */
+    float split_far[PN_CASCADES_MAX];   /* split selection: the split's far view depth */
+    float static_bias[PN_CASCADES_MAX]; /* where the derivatives do not hold */
+    float bias_min[PN_CASCADES_MAX];
+    float bias_max[PN_CASCADES_MAX];
+} CascadeParams;
+
+/* Volumetric-obscurance SSAO with paired samples (kernels/ssao_vo.h;
+ * host/src/ssao.cpp). The pattern and the rotation tile are the source. */
+#define PN_SSAO_PAIRED 0      /* an unusable sample: its partner's inverse, else 1/2 */
+#define PN_SSAO_ZERO 1        /* an unusable sample: 0 */
+#define PN_SSAO_HALF 2        /* an unusable sample: 1/2 */
+#define PN_SSAO_RENORMALISE 3 /* unusable samples dropped, the weights renormalised */
+typedef struct {
+    pn_dims depth;       /* one plane: view depth, world units, 0 = no surface */
+    pn_dims out;         /* one plane: obscurance or accessibility */
+    int pairs;           /* sample pairs in the pattern */
+    int unusable;        /* PN_SSAO_* */
+    int rotate;          /* 1: the 4x4 rotation tile turns the pattern per pixel */
+    int accessibility;   /* 1: out = 1 - saturate(2 o - 1); 0: out = o */
+    float radius;        /* R: the sphere's radius, world units */
+    float focal;         /* focal length in pixels: (height / 2) / tan(vertical fov / 2) */
+    float max_pixels;    /* the screen radius's cap, pixels */
+    float falloff;       /* > 1: occluders nearer than the centre by falloff R' or more count not */
+    float centre_weight; /* the centre line's share of the sphere's volume */
+} SsaoParams;
+
 #ifdef __cplusplus
 }  /* namespace penumbra */
 #endif

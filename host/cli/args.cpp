@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "penumbra/error.h"
+
 namespace penumbra::cli {
 
 Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& valued,
@@ -61,6 +63,15 @@ float Args::number(const std::string& name, float fallback) const
     if (value->empty() || *end != '\0' || !std::isfinite(parsed))
         throw UsageError{"option " + name + ": '" + *value + "' is not a finite number"};
     return parsed;
+}
+
+Backend backend_option(const Args& args)
+{
+    try {
+        return parse_backend(args.text("--backend", "auto"));
+    } catch (const Error& e) {
+        throw UsageError{std::string(e.what())};
+    }
 }
 
 }  // namespace penumbra::cli

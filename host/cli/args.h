@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/context.h"
+
 namespace penumbra::cli {
 
 // Thrown for bad usage; main() prints it as one line and exits with 2.
@@ -31,5 +33,8 @@ private:
     std::map<std::string, std::string> values_;
     std::set<std::string> flags_;
 };
+
+// The --backend option (default auto), its error as a UsageError.
+Backend backend_option(const Args& args);
 
 }  // namespace penumbra::cli

@@ -29,5 +29,6 @@ extern const std::vector<std::string> kReceiverChannels;
 Image pack_receivers(const reference::Receivers& receivers);
 int blur_command(const std::vector<std::string>& args);
 int ambient_command(const std::vector<std::string>& args);
+int mask_command(const std::vector<std::string>& args);
 
 }  // namespace penumbra::cli

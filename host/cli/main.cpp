@@ -51,6 +51,8 @@ const std::vector<Command>& commands()
          sdf_bake_command},
         {"ambient", "--rig RIG.json [--dark-rig DARK.json --volumes VOL.json] --receivers RX.exr --out OUT.exr",
          "irradiance from SH ambient rigs and volumes (ambient --help)", ambient_command},
+        {"mask", "--scene S --out MASK.exr [--view-size WxH] [--blur] [step options]",
+         "a scene view's deferred mask: ao (ssao-vo), blurred together (mask --help)", mask_command},
     };
     return table;
 }

@@ -35,6 +35,9 @@ Scene contact_scene()
     scene.light_camera = perspective(0.5, 24, 80);
     scene.view = ViewCamera{{3.1, 4.0, 3.9}, {0.9, 0.2, 0.7}, {0, 1, 0}, 45};
     scene.map_size = 1024;
+    // Cascades (docs/cascades.md): a sun from about the area light's side and
+    // a character light from the other, low enough to cross the first.
+    scene.directional_lights = {{{0.45, -1, 0.3}, {0, 0, -1}}, {{-0.8, -1, 0.25}, {0, 0, -1}}};
     return scene;
 }
 
@@ -149,6 +152,8 @@ Scene large_scene()
     scene.light_camera = perspective(10, 400, 50);
     scene.view = ViewCamera{{50, 170, 110}, {0, 0, 5}, {0, 1, 0}, 45};
     scene.map_size = 16384;
+    // The city under a sun (cascaded shadow maps, docs/cascades.md).
+    scene.directional_lights = {{{0.25, -1, 0.15}, {0, 0, -1}}};
     return scene;
 }
 

@@ -4,26 +4,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "disk_mapping.h"
 #include "penumbra/reference/ground_truth.h"
 #include "splitmix64.h"
 
 namespace penumbra::reference {
 namespace {
-
-// Shirley and Chiu 1997: squares around the centre of [-1, 1]^2 go to circles,
-// preserving area, so equal strata of the square are equal areas of the disk.
-Vec3 concentric_disk(double a, double b)
-{
-    const double x = 2 * a - 1, y = 2 * b - 1;
-    if (x == 0 && y == 0) return {};
-    constexpr double quarter_pi = std::numbers::pi / 4;
-    if (std::fabs(x) > std::fabs(y)) {
-        const double phi = quarter_pi * (y / x);
-        return {x * std::cos(phi), x * std::sin(phi), 0};
-    }
-    const double phi = 2 * quarter_pi - quarter_pi * (x / y);
-    return {y * std::cos(phi), y * std::sin(phi), 0};
-}
 
 // The light point for a sample (a, b) of the unit square, in the light's frame.
 Vec3 light_point(const AreaLight& light, const Basis& frame, double a, double b)

@@ -153,6 +153,23 @@ ViewCamera read_view(const Reader& r, const json& root)
     return view;
 }
 
+std::vector<DirectionalLight> read_directional_lights(const Reader& r, const json& root)
+{
+    std::vector<DirectionalLight> lights;
+    if (!root.contains("directional_lights")) return lights;
+    const json& list = root.at("directional_lights");
+    if (!list.is_array()) r.fail("directional_lights", "must be an array");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const std::string at = "directional_lights[" + std::to_string(i) + "]";
+        r.only_keys(list[i], at, {"direction", "up"});
+        DirectionalLight light;
+        light.direction = r.vec3(list[i], at, "direction");
+        light.up = r.vec3_or(list[i], at, "up", light.up);
+        lights.push_back(light);
+    }
+    return lights;
+}
+
 int read_map_size(const Reader& r, const json& root)
 {
     if (!root.contains("map_size")) return Scene{}.map_size;
@@ -168,7 +185,7 @@ Scene read_scene(const Reader& r, const json& root)
     if (!root.is_object()) r.fail("(document)", "must be a JSON object");
     r.only_keys(root, "",
                 {"name", "description", "map_size", "primitives", "media", "hair", "light", "light_camera", "view",
-                 "ambient"});
+                 "ambient", "directional_lights"});
     Scene scene;
     if (root.contains("name")) scene.name = r.string(root, "", "name");
     if (root.contains("description")) scene.description = r.string(root, "", "description");
@@ -179,6 +196,7 @@ Scene read_scene(const Reader& r, const json& root)
     scene.light = read_light(r, root);
     scene.light_camera = read_light_camera(r, root);
     scene.view = read_view(r, root);
+    scene.directional_lights = read_directional_lights(r, root);
     if (root.contains("ambient")) scene.ambient = read_scene_ambient(r, root["ambient"], "ambient");
     return scene;
 }
@@ -264,6 +282,12 @@ std::string scene_to_json(const Scene& scene)
     if (!scene.media.empty()) root["media"] = media_to_json(scene.media);
     if (!scene.hair.empty()) root["hair"] = hair_to_json(scene.hair);
     if (scene.ambient) root["ambient"] = scene_ambient_to_json(*scene.ambient);
+    if (!scene.directional_lights.empty()) {
+        json lights = json::array();
+        for (const DirectionalLight& light : scene.directional_lights)
+            lights.push_back({{"direction", to_json(light.direction)}, {"up", to_json(light.up)}});
+        root["directional_lights"] = lights;
+    }
     return root.dump(2) + "\n";
 }
 

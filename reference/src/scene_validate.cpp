@@ -172,6 +172,20 @@ void check_view(const FieldChecker& c, const ViewCamera& view)
     c.require(view.fov_degrees > 0 && view.fov_degrees < 179, "view.fov_degrees", "must be in (0, 179)");
 }
 
+void check_directional_lights(const FieldChecker& c, const std::vector<DirectionalLight>& lights)
+{
+    c.require(int(lights.size()) <= kMaxDirectionalLights, "directional_lights",
+              "must hold at most " + std::to_string(kMaxDirectionalLights) +
+                  " lights (the world light and a character light)");
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const std::string at = "directional_lights[" + std::to_string(i) + "]";
+        c.direction(lights[i].direction, at + ".direction");
+        c.direction(lights[i].up, at + ".up");
+        c.require(length(cross(normalize(lights[i].direction), normalize(lights[i].up))) > 1e-6, at + ".up",
+                  "must not be parallel to the direction");
+    }
+}
+
 }  // namespace
 
 void validate_scene(const Scene& scene, std::string_view operation, std::string_view context)
@@ -189,6 +203,7 @@ void validate_scene(const Scene& scene, std::string_view operation, std::string_
     check_light(checker, scene.light);
     check_light_camera(checker, scene.light_camera);
     check_view(checker, scene.view);
+    check_directional_lights(checker, scene.directional_lights);
     checker.require(scene.map_size >= 1, "map_size", "must be >= 1");
 }
 

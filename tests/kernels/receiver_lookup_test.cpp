@@ -25,9 +25,11 @@
 
 #include "host/backend/backend.h"
 #include "penumbra/ambient.h"
+#include "penumbra/cascades.h"
 #include "penumbra/chebyshev.h"
 #include "penumbra/deep_shadow_map.h"
 #include "penumbra/moments.h"
+#include "penumbra/ssao.h"
 #include "support/backends.h"
 #include "support/errors.h"
 #include "support/maps.h"
@@ -145,6 +147,31 @@ LookupRun ambient_volumes_run()
     };
 }
 
+// One cascade: the map itself, the receivers' (u, v, z) as world positions
+// (identity frame), selected by split depth so that every receiver is in it.
+LookupRun cascade_mask_run()
+{
+    return [](Context& context, const Image& receivers, Image& out) {
+        CascadeShadows s;
+        s.axis_u = {1, 0, 0}, s.axis_v = {0, 1, 0}, s.axis_z = {0, 0, 1};
+        s.cascades = {CascadeFrame{1, 0, 1, 0, 1, 0, 2}};
+        s.maps = depth_map();
+        Image rx(receivers.width(), receivers.height(), kCascadeReceiverChannels);
+        for (int y = 0; y < rx.height(); ++y)
+            for (int x = 0; x < rx.width(); ++x) {
+                for (int c = 0; c < 3; ++c) rx.at(c, x, y) = receivers.at(c, x, y);
+                rx.at(3, x, y) = 1;
+                rx.at(4, x, y) = 1;
+            }
+        CascadeOptions o;  // biases of the other PCF cases' size: a texel of this map is 1/9
+        o.selection = CascadeSelection::SplitDepth;
+        o.bias_min = 0.01f, o.static_bias = 0.02f, o.bias_max = 0.1f;
+        const Image mask = cascade_mask(context, s, rx, o);
+        for (int y = 0; y < out.height(); ++y)
+            for (int x = 0; x < out.width(); ++x) out.at(0, x, y) = mask.at(0, x, y);
+    };
+}
+
 LookupRun ambient_sh_run()
 {
     return [](Context& context, const Image& receivers, Image& out) {
@@ -158,6 +185,27 @@ LookupRun ambient_sh_run()
         const Image e = ambient_irradiance(context, normals, l);
         for (int y = 0; y < out.height(); ++y)
             for (int x = 0; x < out.width(); ++x) out.at(0, x, y) = std::clamp(e.at(0, x, y), 0.0f, 1.0f);
+    };
+}
+
+// ssao_vo reads its pattern as the source and a view depth as the
+// receivers: 1 + 2 z of the receivers' random z plane, the sphere 3 pixels
+// wide (a narrow view, no cap), no falloff, 16 pairs renormalised over the
+// samples on screen, the AO term: the nearest pixels are open (near 1), the
+// farthest nearly closed.
+LookupRun ssao_vo_run()
+{
+    return [](Context& context, const Image& receivers, Image& out) {
+        Image depth(receivers.width(), receivers.height(), 1);
+        for (int y = 0; y < depth.height(); ++y)
+            for (int x = 0; x < depth.width(); ++x) depth.at(0, x, y) = 1.0f + 2.0f * receivers.at(2, x, y);
+        SsaoOptions o;
+        o.radius = 1.0;
+        o.pairs = 16;
+        o.falloff = 1000;
+        o.max_screen_radius = 1.0;
+        o.unusable = SsaoUnusable::Renormalise;
+        ssao_obscurance(context, depth, 10.0, o, out);
     };
 }
 
@@ -235,9 +283,13 @@ LookupRun lookup_case(const Sources& s)
         p.max_radius = 0.3f;
         p.bias_slope = 2.0f;
         if (name == "pcss" || name == "burley") return map_run_of<K>(depth_map(), p, &Params::depth);
+    } else if constexpr (std::is_same_v<Params, CascadeParams>) {
+        if (name == "cascade_mask") return cascade_mask_run();
     } else if constexpr (std::is_same_v<Params, AmbientParams>) {
         if (name == "ambient_volumes") return ambient_volumes_run();
         if (name == "ambient_sh") return ambient_sh_run();
+    } else if constexpr (std::is_same_v<Params, SsaoParams>) {
+        if (name == "ssao_vo") return ssao_vo_run();
     }
     return {};
 }
@@ -281,7 +333,7 @@ PN_BACKEND_TEST(ReceiverLookup, EveryLookupShapedEntryAgreesWithTheScalarOracle)
                             }
                     }
                     EXPECT_GT(lit, 0) << detail::kernel_name(K);
-                    EXPECT_GT(shadowed, 0) << detail::kernel_name(K);
+                    EXPECT_GT(shadowed, 0) << detail::kernel_name(K) << " (lit " << lit << ")";
                 }
             },
             [] { ADD_FAILURE() << "visit_kernel missed a table entry"; });

@@ -9,6 +9,7 @@
 #include "penumbra/reference/ground_truth.h"
 #include "penumbra/reference/light_space.h"
 #include "penumbra/reference/metrics.h"
+#include "penumbra/reference/obscurance_truth.h"
 #include "penumbra/reference/render.h"
 #include "penumbra/reference/scene.h"
 #include "penumbra/reference/sdf_scene.h"

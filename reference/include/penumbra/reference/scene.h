@@ -124,6 +124,20 @@ struct AreaLight {
     double width = 1, height = 1;
 };
 
+// A light at infinity (the sun): parallel rays travelling along `direction`.
+// Its frame is basis_looking_along(direction, up), as an area light's is
+// along its normal; cascaded shadow maps (cascades.h) are orthographic maps
+// in that frame, fitted to the view, so the light needs no camera of its own.
+// A scene's first directional light is its world light (the sun), the second
+// its character light (Toy Story 3's second shadow channel; docs/cascades.md).
+struct DirectionalLight {
+    Vec3 direction{0, -1, 0};
+    Vec3 up{0, 0, -1};
+};
+
+// A scene holds at most this many (the world light and a character light).
+inline constexpr int kMaxDirectionalLights = 2;
+
 enum class Projection { Perspective, Orthographic };
 
 // The camera that renders the shadow map. It sits at the light's centre and
@@ -156,6 +170,8 @@ struct Scene {
     std::vector<Hair> hair;
     AreaLight light;
     LightCamera light_camera;
+    // Optional: the sun and a character light, for cascaded shadow maps.
+    std::vector<DirectionalLight> directional_lights;
     ViewCamera view;
     // The shadow-map side the scene is designed for (texel-size claims in the
     // scene's description refer to it). Every render works at any size.
