@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -126,8 +127,8 @@ PN_BACKEND_TEST(SsaoVoTest, TiltedPlanesAreHalfOccludedWithPairsAtAnyRotation)
 // The inside of a right-angle corner, at its edge: the free space in front
 // is a 90-degree wedge, a quarter of the sphere, so o = 3/4. The estimate is
 // a quadrature of that volume; 16 pairs averaged over the tile's 16
-// rotations come within 0.02 of it, and every pixel matches the method's
-// float64 mathematics.
+// rotations come within 0.02 of it (measured 0.7376), and every pixel
+// matches the method's float64 mathematics.
 PN_BACKEND_TEST(SsaoVoTest, ACornerIsThreeQuartersOccluded)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
@@ -145,6 +146,7 @@ PN_BACKEND_TEST(SsaoVoTest, ACornerIsThreeQuartersOccluded)
         }
     }
     EXPECT_NEAR(sum / n, 0.75, 0.02);
+    std::cout << backend << ": corner mean " << sum / n << "\n";
 }
 
 // A reference scene's view depth: every option against the float64
@@ -175,11 +177,10 @@ PN_BACKEND_TEST(SsaoVoTest, MatchesTheFloat64MathematicsOnASceneAtOddSizes)
 }
 
 // The flicker metric: the mean |change| of the blurred AO term between two
-// frames whose camera moved 1 cm sideways (about a third of a pixel at the
-// contact scene's ground), over pixels that see a surface in both. Line
-// integrals change continuously with depth, so the change stays below 0.01
-// (measured: docs/ssao.md); a pixel's own change is bounded by its
-// samples' moves.
+// frames whose camera moved 1 cm sideways (about a tenth of a pixel at the
+// contact scene's ground, 11 m away), over pixels that see a surface in both. Line
+// integrals change continuously with depth, so the change stays below 0.002
+// (measured 0.00043 on every backend, 2026-12-03; docs/ssao.md).
 PN_BACKEND_TEST(SsaoVoTest, ASmallCameraMoveChangesTheMaskLittle)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
@@ -200,7 +201,8 @@ PN_BACKEND_TEST(SsaoVoTest, ASmallCameraMoveChangesTheMaskLittle)
                 ++n;
             }
     ASSERT_GT(n, w * h / 2);
-    EXPECT_LT(sum / n, 0.01);
+    EXPECT_LT(sum / n, 0.002);
+    std::cout << backend << ": mean change " << sum / n << "\n";
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, SsaoVoTest, ::testing::ValuesIn(backend_names()), backend_test_name);
