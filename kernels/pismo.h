@@ -18,10 +18,11 @@
  *                      D   = sum w_k D_k / sum w_k over the corners with an
  *                            estimate (none: O_i = P)
  *                      O_i = L_i + D (P - L_i) / |P - L_i|
- *                      occlusion_i = sum w_k o_k, o_k = 1 when the TEST map
+ *                      lit_i = sum w_k (1 - o_k), o_k = 1 when the TEST map
  *                            k holds, at O_i's pixel, a layer nearer than
  *                            |P - V_k| minus the bias (P behind the occluder)
- *                    Out: 1 - sum_i weight_i occlusion_i, in [0, 1].
+ *                    Out: sum_i weight_i lit_i / sum_i weight_i sum_k w_k,
+ *                    in [0, 1] (the denominator is 1 up to float rounding).
  *
  * Sources (host/src/pismo_pack.cpp packs them; keep the layouts in sync):
  *   offsets   uint: every map's offsets into `depths`, maps one after
@@ -148,8 +149,8 @@ PN_FN PismoCorner pismo_corner(PN_GLOBAL const float* cameras, PN_GLOBAL const f
 
 /* o_k: whether test map k holds, at o's pixel, a layer nearer than P's limit
  * there (its nearest layer is enough: any nearer layer implies it). */
-PN_FN pn_float pismo_occludes(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
-                              PN_GLOBAL const float* cameras, PismoParams p, PismoCorner k, PismoPoint o)
+PN_FN pn_mask pismo_occludes(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
+                             PN_GLOBAL const float* cameras, PismoParams p, PismoCorner k, PismoPoint o)
 {
     const PismoLanding at = pismo_land(cameras, p, k.map, o);
     pn_uint first, second;
@@ -157,12 +158,12 @@ PN_FN pn_float pismo_occludes(PN_GLOBAL const uint* offsets, PN_GLOBAL const flo
     const pn_int begin = pn_uint_to_index(first);
     const pn_float front = pn_gather(depths, pn_imin(begin, p.last_depth));
     const pn_mask holds = pn_and(pn_and(at.inside, k.p_inside), pn_iless(begin, pn_uint_to_index(second)));
-    return pn_select(pn_and(holds, front < k.limit), 1.0f, 0.0f);
+    return pn_and(holds, front < k.limit);
 }
 
-/* The occlusion of one ray, weights w (uniform: the pattern is the same for
- * every receiver, so L_i is too). */
-PN_FN pn_float pismo_ray_occlusion(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
+/* The lit share of one ray, sum of w_k (1 - o_k), weights w (uniform: the
+ * pattern is the same for every receiver, so L_i is too). */
+PN_FN pn_float pismo_ray_light(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
                                    PN_GLOBAL const float* cameras, PismoParams p, const PismoCorner* k,
                                    PN_GLOBAL const float* w, PismoPoint q)
 {
@@ -182,9 +183,10 @@ PN_FN pn_float pismo_ray_occlusion(PN_GLOBAL const uint* offsets, PN_GLOBAL cons
     o.x = pn_select(estimated, lx + tx * along, q.x);
     o.y = pn_select(estimated, ly + ty * along, q.y);
     o.z = pn_select(estimated, lz + tz * along, q.z);
-    pn_float blocked = 0.0f;
-    for (int j = 0; j < 3; ++j) blocked = blocked + w[j] * pismo_occludes(offsets, depths, cameras, p, k[j], o);
-    return blocked;
+    pn_float lit = 0.0f;
+    for (int j = 0; j < 3; ++j)
+        lit = lit + pn_select(pismo_occludes(offsets, depths, cameras, p, k[j], o), 0.0f, w[j]);
+    return lit;
 }
 
 PN_KERNEL void pismo_visibility(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
@@ -195,17 +197,22 @@ PN_KERNEL void pismo_visibility(PN_GLOBAL const uint* offsets, PN_GLOBAL const f
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
     const PismoPoint q = pismo_receiver(receivers, p, pn_y, bad_rows, pn_x);
-    pn_float occlusion = 0.0f;
+    /* Lit rays over all rays, both summed in the same order, so that a point
+     * that every ray reaches is exactly 1 and one that none reaches exactly 0
+     * (the float32 weights sum to 1 only within a rounding). */
+    pn_float lit = 0.0f;
+    float total = 0.0f;
     for (int t = 0; t < p.triangles; ++t) {
         PN_GLOBAL const uint* tri = triangles + PN_PISMO_TRIANGLE_UINTS * t;
         PismoCorner k[3];
         for (int j = 0; j < 3; ++j) k[j] = pismo_corner(cameras, estimates, p, (int)tri[j], q, pn_x, pn_y);
         for (int r = (int)tri[3]; r < (int)tri[4]; ++r) {
             PN_GLOBAL const float* w = rays + PN_PISMO_RAY_FLOATS * r;
-            occlusion = occlusion + w[3] * pismo_ray_occlusion(offsets, depths, cameras, p, k, w, q);
+            lit = lit + w[3] * pismo_ray_light(offsets, depths, cameras, p, k, w, q);
+            total = total + w[3] * (((0.0f + w[0]) + w[1]) + w[2]);
         }
     }
-    pn_store(out, p.out, pn_x, pn_y, pn_saturate(1.0f - occlusion));
+    pn_store(out, p.out, pn_x, pn_y, pn_saturate(lit / total));
 }
 
 #endif
