@@ -219,8 +219,12 @@ PN_BACKEND_TEST(Pismo, ABlockerPlaneParallelToTheLightMeetsTheClosedForm)
             const double d = got.at(0, x, y) - want;
             sum += d * d;
             EXPECT_NEAR(got.at(0, x, y), want, 0.03) << "x = " << px << " on " << backend;
-            if (px > 1.3) EXPECT_EQ(got.at(0, x, y), 1.0f) << "outside the shadow, x = " << px;
-            if (px < -1.3) EXPECT_EQ(got.at(0, x, y), 0.0f) << "under the blocker, x = " << px;
+            if (px > 1.3) {
+                EXPECT_EQ(got.at(0, x, y), 1.0f) << "outside the shadow, x = " << px;
+            }
+            if (px < -1.3) {
+                EXPECT_EQ(got.at(0, x, y), 0.0f) << "under the blocker, x = " << px;
+            }
         }
     EXPECT_LT(std::sqrt(sum / (2 * n)), 0.01) << backend;
 }
