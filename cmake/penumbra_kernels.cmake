@@ -34,6 +34,7 @@ set(PENUMBRA_KERNEL_FILES
   kernels/ambient_sh.h
   kernels/dsm_lookup.h
   kernels/ssao_vo.h
+  kernels/pismo.h
 )
 
 set(_gen ${CMAKE_CURRENT_BINARY_DIR}/generated)
@@ -70,6 +71,7 @@ set(PENUMBRA_CL_FAMILY_FILES_pcf kernels/receiver_slope.h kernels/depth_bias.h k
 set(PENUMBRA_CL_FAMILY_FILES_ambient kernels/ambient_volumes.h kernels/ambient_sh.h)
 set(PENUMBRA_CL_FAMILY_FILES_dsm kernels/receiver_slope.h kernels/dsm_lookup.h)
 set(PENUMBRA_CL_FAMILY_FILES_ssao kernels/ssao_vo.h)
+set(PENUMBRA_CL_FAMILY_FILES_pismo kernels/receiver_slope.h kernels/pismo.h)
 
 set(_table ${CMAKE_CURRENT_SOURCE_DIR}/kernels/kernel_table.h)
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_table})  # a new family reconfigures
