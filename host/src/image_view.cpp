@@ -58,10 +58,11 @@ Geometry checked(const Geometry& g, std::string_view op, std::string_view parame
         throw Error(ErrorCategory::InvalidArgument, op, parameter, message);
     };
     const std::string name = "the view '" + std::string(parameter) + "'";
-    if (g.address == 0) fail(name + " has a null data pointer; pass the address of its first pixel");
     if (g.width <= 0 || g.height <= 0)
         fail(name + " is " + std::to_string(g.width) + "x" + std::to_string(g.height) +
              "; a view holds at least one pixel");
+    // After the size: an empty Image's view has no pixels and no pointer.
+    if (g.address == 0) fail(name + " has a null data pointer; pass the address of its first pixel");
     if (g.channels < 1 || g.channels > 16)
         fail(name + " has " + std::to_string(g.channels) + " channels; give 1 to 16");
     if (g.row_pitch < g.row_bytes())
