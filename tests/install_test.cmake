@@ -19,13 +19,8 @@
 file(REMOVE_RECURSE ${SCRATCH})
 set(prefix ${SCRATCH}/prefix)
 string(REPLACE "," ";" COMPONENTS "${COMPONENTS}")  # a list cannot pass through add_test whole
-foreach(component IN LISTS COMPONENTS)
-  execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix} --component ${component}
-                  RESULT_VARIABLE rc OUTPUT_QUIET)
-  if(rc)
-    message(FATAL_ERROR "installing component ${component} failed: ${rc}")
-  endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/install_components.cmake)
+install_components(${BUILD_DIR} ${prefix} ${COMPONENTS})
 
 function(configure_consumer name binary_dir result)
   execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/${name} -B ${binary_dir}

@@ -4,13 +4,8 @@
 # cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DSCRATCH=... -DPYTHON=... -DPYTHON_DIR=... -P install_test.cmake
 file(REMOVE_RECURSE ${SCRATCH})
 set(prefix ${SCRATCH}/prefix)
-foreach(component penumbra python)
-  execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix} --component ${component}
-                  RESULT_VARIABLE rc OUTPUT_QUIET)
-  if(rc)
-    message(FATAL_ERROR "installing component ${component} failed: ${rc}")
-  endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/../install_components.cmake)
+install_components(${BUILD_DIR} ${prefix} penumbra python)
 set(ENV{PYTHONPATH} ${prefix}/${PYTHON_DIR})
 # Run from the scratch folder: `python -c` and `python -m` put the working
 # directory first on sys.path, and ctest's is the build tree's python/.
