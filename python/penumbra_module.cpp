@@ -17,103 +17,17 @@
 #include "penumbra/error.h"
 #include "penumbra/image_view.h"
 #include "penumbra/methods.h"
+#include "numpy_views.h"
+#include "reference_module.h"
 
 namespace py = pybind11;
 using penumbra::Error;
 using penumbra::ErrorCategory;
+using penumbra::python::input_view;
+using penumbra::python::output_view;
+using penumbra::python::refuse;
 
 namespace {
-
-[[noreturn]] void refuse(const std::string& op, const std::string& parameter, const std::string& message)
-{
-    throw Error(ErrorCategory::InvalidArgument, op, parameter, message);
-}
-
-// Images are (H, W) for one channel or (C, H, W); the memory order is read
-// from the strides: (C, H, W) with unit pixel stride is planar (rows and
-// planes at any pitch), with pixel stride C and unit channel stride
-// interleaved (an (H, W, C) array seen through transpose(2, 0, 1)).
-struct Strides {
-    py::ssize_t channels, height, width;   // extents
-    py::ssize_t plane, row, pixel;         // strides in bytes
-};
-
-Strides strides_of(const py::array& a)
-{
-    const py::ssize_t item = a.itemsize();
-    if (a.ndim() == 2) return {1, a.shape(0), a.shape(1), a.shape(0) * a.strides(0), a.strides(0), a.strides(1)};
-    return {a.shape(0), a.shape(1), a.shape(2), a.strides(0), a.strides(1), a.strides(2) == 0 ? item : a.strides(2)};
-}
-
-// The view of `a` if its strides are one the library takes; nullopt otherwise.
-template <class View>
-std::optional<View> view_of(const py::array& a, void* data)
-{
-    const Strides s = strides_of(a);
-    const py::ssize_t item = a.itemsize();
-    // A dimension of extent 1 has no meaningful stride: give it the packed one.
-    const py::ssize_t row = s.height == 1 ? s.width * s.pixel : s.row;
-    View v;
-    v.data = data;
-    v.width = int(s.width);
-    v.height = int(s.height);
-    v.channels = int(s.channels);
-    if (row <= 0) return std::nullopt;
-    v.row_pitch = std::size_t(row);
-    if (s.pixel == item) {
-        const py::ssize_t plane = s.channels == 1 ? row * s.height : s.plane;
-        if (plane <= 0) return std::nullopt;
-        v.plane_pitch = std::size_t(plane);
-        v.layout = penumbra::ChannelLayout::Planar;
-        return v;
-    }
-    if (s.pixel == s.channels * item && (s.plane == item || s.channels == 1)) {
-        v.layout = penumbra::ChannelLayout::Interleaved;
-        return v;
-    }
-    return std::nullopt;
-}
-
-void check_rank(const py::array& a, const std::string& op, const std::string& parameter)
-{
-    if (a.ndim() != 2 && a.ndim() != 3)
-        refuse(op, parameter,
-               "'" + parameter + "' has " + std::to_string(a.ndim()) + " dimensions; give (H, W) or (C, H, W)");
-}
-
-// An input array as a view; `keep` holds the array (or its float32 or
-// contiguous copy, for another dtype or strides no view can express).
-penumbra::ImageView input_view(const py::object& object, const std::string& op, const std::string& parameter,
-                               py::array& keep)
-{
-    keep = py::array::ensure(object);
-    if (!keep) refuse(op, parameter, "'" + parameter + "' is not an array");
-    if (!keep.dtype().is(py::dtype::of<float>()) && !keep.dtype().is(py::dtype::of<std::uint16_t>()))
-        keep = py::array_t<float, py::array::forcecast>::ensure(keep);
-    check_rank(keep, op, parameter);
-    auto view = view_of<penumbra::ImageView>(keep, const_cast<void*>(keep.data()));
-    if (!view) {
-        keep = py::array::ensure(keep, py::array::c_style);
-        view = view_of<penumbra::ImageView>(keep, const_cast<void*>(keep.data()));
-    }
-    view->type = keep.dtype().is(py::dtype::of<float>()) ? penumbra::PixelType::Float32 : penumbra::PixelType::UInt16;
-    return *view;
-}
-
-// `out` as given (written in place: float32, writable, a layout a view
-// takes), or a new float32 array of `shape`.
-std::pair<py::array, penumbra::MutableImageView> output_view(const py::object& out, std::vector<py::ssize_t> shape,
-                                                            const std::string& op)
-{
-    py::array a = out.is_none() ? py::array_t<float>(shape) : py::array::ensure(out);
-    const std::string hint = "; give a writable float32 array of shape (H, W) or (C, H, W), planar or "
-                             "an (H, W, C) array's transpose(2, 0, 1)";
-    if (!a || !a.dtype().is(py::dtype::of<float>()) || !a.writeable()) refuse(op, "out", "'out' is not writable float32" + hint);
-    check_rank(a, op, "out");
-    const auto view = view_of<penumbra::MutableImageView>(a, a.mutable_data());
-    if (!view) refuse(op, "out", "'out' has strides no view can express" + hint);
-    return {a, *view};
-}
 
 // Options as keyword arguments: min_variance=... is the option min-variance.
 std::vector<std::pair<std::string, std::string>> method_options(const py::kwargs& options)
@@ -235,4 +149,6 @@ PYBIND11_MODULE(penumbra, m)
           py::arg("separable") = d.separable, py::arg("normal_sigma") = d.normal_sigma,
           "The cross-bilateral blur of mask (H, W) or (C, H, W), C <= 4, guided by depth (H, W) and\n"
           "optionally normals (3, H, W) (penumbra/bilateral.h).");
+
+    penumbra::python::add_reference(m);
 }

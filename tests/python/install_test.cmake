@@ -1,11 +1,11 @@
-# ctest PythonInstalled: installs the penumbra and python components into a
+# ctest PythonInstalled: installs the penumbra, reference and python components into a
 # scratch prefix and runs the Python tests against the installed module
 # alone (PYTHONPATH the prefix's dist-packages, no build tree on it).
 # cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DSCRATCH=... -DPYTHON=... -DPYTHON_DIR=... -P install_test.cmake
 file(REMOVE_RECURSE ${SCRATCH})
 set(prefix ${SCRATCH}/prefix)
 include(${CMAKE_CURRENT_LIST_DIR}/../install_components.cmake)
-install_components(${BUILD_DIR} ${prefix} penumbra python)
+install_components(${BUILD_DIR} ${prefix} penumbra reference python)
 set(ENV{PYTHONPATH} ${prefix}/${PYTHON_DIR})
 # Run from the scratch folder: `python -c` and `python -m` put the working
 # directory first on sys.path, and ctest's is the build tree's python/.
