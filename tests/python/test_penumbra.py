@@ -90,6 +90,11 @@ def test_every_layout_gives_the_same_bits(context):
     for name, layout in layouts.items():
         np.testing.assert_array_equal(penumbra.shade(context, "vsm", depth, layout, radius=2), expected, name)
 
+    # A zero stride (a broadcast column) is copied, not read as distinct pixels.
+    column = receivers[:, :, :1]
+    np.testing.assert_array_equal(penumbra.shade(context, "vsm", depth, np.broadcast_to(column, receivers.shape)),
+                                  penumbra.shade(context, "vsm", depth, np.repeat(column, 7, axis=2)))
+
     q = np.random.default_rng(5).integers(0, 65536, (9, 13)).astype(np.uint16)
     np.testing.assert_array_equal(penumbra.shade(context, "pcf", q, receivers),
                                   penumbra.shade(context, "pcf", q.astype(np.float32) / np.float32(65535), receivers))
