@@ -92,16 +92,28 @@ Borrowed borrowed(const Geometry& g)
     return {reinterpret_cast<float*>(g.address), int(g.row_pitch / 4), g.plane_pitch / 4};
 }
 
-float read_element(const std::byte* p, std::size_t element)
+// Bytes between two pixels of one channel.
+std::size_t pixel_step(const Geometry& g)
+{
+    return g.interleaved() ? std::size_t(g.channels) * g.element : g.element;
+}
+
+// One row of one channel into planar floats. A fixed-size memcpy is one
+// load, at any alignment; the loops are per element type so that each is
+// a plain strided loop (a per-element offset and type branch made a 1080p
+// 3-channel copy 3 to 4 times slower: 60-85 ms against 16-22 ms, one run of
+// five each at load 8-9 on the shared 2-core Xeon).
+void read_row(const std::byte* first, std::size_t step, std::size_t element, int width, float* row)
 {
     if (element == 2) {
-        std::uint16_t v;
-        std::memcpy(&v, p, 2);
-        return float(v) / 65535.0f;  // correctly rounded: the contract (image_view.h)
+        for (int x = 0; x < width; ++x) {
+            std::uint16_t v;
+            std::memcpy(&v, first + std::size_t(x) * step, 2);
+            row[x] = float(v) / 65535.0f;  // correctly rounded: the contract (image_view.h)
+        }
+        return;
     }
-    float v;
-    std::memcpy(&v, p, 4);
-    return v;
+    for (int x = 0; x < width; ++x) std::memcpy(row + x, first + std::size_t(x) * step, 4);
 }
 
 // Row by row in parallel: a 1080p copy is a pass over tens of megabytes.
@@ -141,10 +153,8 @@ InputImage::InputImage(const ImageView& view, std::string_view operation, std::s
     }
     image_ = Image(g.width, g.height, g.channels, Image::Uninitialized{});
     const auto* base = static_cast<const std::byte*>(view.data);
-    for_rows(image_, [&](int c, int y) {
-        float* row = image_.row(c, y);
-        for (int x = 0; x < g.width; ++x) row[x] = read_element(base + g.offset(c, x, y), g.element);
-    });
+    const std::size_t step = pixel_step(g);
+    for_rows(image_, [&](int c, int y) { read_row(base + g.offset(c, 0, y), step, g.element, g.width, image_.row(c, y)); });
 }
 
 OutputImage::OutputImage(const MutableImageView& view, std::string_view operation, std::string_view parameter)
@@ -164,9 +174,11 @@ void OutputImage::commit() const
     if (image_.borrowed()) return;
     const Geometry g = geometry(view_, 4);
     auto* base = static_cast<std::byte*>(view_.data);
+    const std::size_t step = pixel_step(g);
     for_rows(image_, [&](int c, int y) {
         const float* row = image_.row(c, y);
-        for (int x = 0; x < g.width; ++x) std::memcpy(base + g.offset(c, x, y), row + x, 4);
+        std::byte* first = base + g.offset(c, 0, y);
+        for (int x = 0; x < g.width; ++x) std::memcpy(first + std::size_t(x) * step, row + x, 4);
     });
 }
 
