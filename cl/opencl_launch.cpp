@@ -2,7 +2,9 @@
 
 namespace penumbra::cl_backend {
 
-std::size_t image_floats(const Image& image) { return image.plane_pitch() * image.channels(); }
+// Up to the last pixel, not the plane pitch times the planes: a borrowed
+// image (penumbra/image_view.h) may end there.
+std::size_t image_floats(const Image& image) { return image.extent(); }
 
 Input<float> image_input(const cl::Context& context, const Image& image)
 {

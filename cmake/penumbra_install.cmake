@@ -7,7 +7,8 @@
 #   reference  libpenumbra_reference, include/penumbra/reference{.h,/}, and
 #              penumbraReferenceTargets.cmake (penumbra::reference), loaded
 #              only by find_package(penumbra CONFIG COMPONENTS reference);
-#   tool       bin/penumbra (it needs both libraries).
+#   tool       bin/penumbra (it needs both libraries);
+#   python     the Python module, when built (PENUMBRA_PYTHON).
 # `cmake --install build` installs all three; `--component penumbra` alone
 # is a complete package for a renderer (tests/install_test.cmake checks it).
 include(CMakePackageConfigHelpers)
@@ -31,6 +32,15 @@ install(EXPORT penumbraReferenceTargets NAMESPACE penumbra:: DESTINATION ${PENUM
         COMPONENT reference)
 
 install(TARGETS penumbra_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tool)
+
+# The Python module (python/), component `python`: into Debian's
+# dist-packages under the prefix (/usr/lib/python3/dist-packages for /usr, on
+# Debian's sys.path), finding libpenumbra by a RUNPATH relative to itself.
+if(TARGET penumbra_python)  # PENUMBRA_PYTHON_DIR: python/CMakeLists.txt
+  file(RELATIVE_PATH _penumbra_python_to_lib /${PENUMBRA_PYTHON_DIR} /${CMAKE_INSTALL_LIBDIR})
+  set_target_properties(penumbra_python PROPERTIES INSTALL_RPATH "$ORIGIN/${_penumbra_python_to_lib}")
+  install(TARGETS penumbra_python LIBRARY DESTINATION ${PENUMBRA_PYTHON_DIR} COMPONENT python)
+endif()
 
 configure_package_config_file(cmake/penumbraConfig.cmake.in
   ${CMAKE_CURRENT_BINARY_DIR}/penumbraConfig.cmake

@@ -6,7 +6,8 @@
 # nlohmann-json, zlib, libdeflate (inflates EXR ZIP chunks), OpenEXR's tools (exrheader: a test
 # checks that other tools read our deep files); OpenCV only as a benchmark and test peer; matplotlib for
 # the charts; clang with its compiler-rt (libFuzzer, ASan, UBSan) for CI's fuzz
-# targets (.ci/fuzz.sh; gcc's own sanitizers serve the sanitizer job).
+# targets (.ci/fuzz.sh; gcc's own sanitizers serve the sanitizer job); pybind11, Python's headers and
+# pytest for the Python module and its tests (python/, tests/python).
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 packages=(
@@ -16,6 +17,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libopencv-contrib-dev
   python3-matplotlib python3-numpy
+  pybind11-dev python3-dev python3-pytest
 )
 missing=()
 for p in "${packages[@]}"; do

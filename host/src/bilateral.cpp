@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -210,6 +211,19 @@ void cross_bilateral(Context& context, const Image& mask, const Image& guide_dep
                                    out, bad_rows.data());
     if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end())
         report_non_finite(mask, guide_depth, guide_normals);
+}
+
+void cross_bilateral(Context& context, const ImageView& mask, const ImageView& guide_depth,
+                     const BilateralOptions& options, const MutableImageView& out, const ImageView* guide_normals)
+{
+    const InputImage m(mask, kOp, "mask"), g(guide_depth, kOp, "guide-depth");
+    const std::optional<InputImage> n =
+        guide_normals ? std::optional<InputImage>(std::in_place, *guide_normals, kOp, "guide-normals") : std::nullopt;
+    OutputImage o(out, kOp, "out");
+    for (const ImageView* input : {&mask, &guide_depth, guide_normals})
+        if (input) require_disjoint(*input, out, kOp, "out");
+    cross_bilateral(context, m.image(), g.image(), options, o.image(), n ? &n->image() : nullptr);
+    o.commit();
 }
 
 }  // namespace penumbra

@@ -83,6 +83,37 @@ Image::Image(int width, int height, int channels, Uninitialized)
     zero_padding();
 }
 
+Image::Image(float* pixels, int width, int height, int channels, int pitch, std::size_t plane_pitch, Borrow)
+    : width_(width), height_(height), channels_(channels), pitch_(pitch), plane_pitch_(plane_pitch), borrowed_(pixels)
+{
+}
+
+// A borrowed image's copy takes its pixels row by row: the caller's memory
+// may end at the last pixel, and its padding is the caller's business.
+Image::Image(const Image& other)
+    : width_(other.width_), height_(other.height_), channels_(other.channels_), pitch_(other.pitch_),
+      plane_pitch_(other.plane_pitch_),
+      storage_(other.borrowed_ ? AlignedBuffer(plane_pitch_ * std::size_t(channels_) * sizeof(float))
+                               : other.storage_)
+{
+    if (!other.borrowed_) return;
+    for (int c = 0; c < channels_; ++c)
+        for (int y = 0; y < height_; ++y) std::copy_n(other.row(c, y), width_, row(c, y));
+}
+
+Image& Image::operator=(const Image& other)
+{
+    if (this != &other) *this = Image(other);
+    return *this;
+}
+
+std::size_t Image::extent() const noexcept
+{
+    if (empty()) return 0;
+    return plane_pitch_ * std::size_t(channels_ - 1) + std::size_t(pitch_) * std::size_t(height_ - 1) +
+           std::size_t(width_);
+}
+
 // No byte of an image is left indeterminate: the writer fills the pixels, this
 // the columns past the width (copies and OpenCL's host buffers move them too).
 // In parallel, because touching a row's end faults its fresh pages in: on one
@@ -97,15 +128,9 @@ void Image::zero_padding()
     });
 }
 
-float* Image::plane(int c) noexcept
-{
-    return reinterpret_cast<float*>(storage_.data()) + plane_pitch_ * std::size_t(c);
-}
+float* Image::plane(int c) noexcept { return base() + plane_pitch_ * std::size_t(c); }
 
-const float* Image::plane(int c) const noexcept
-{
-    return reinterpret_cast<const float*>(storage_.data()) + plane_pitch_ * std::size_t(c);
-}
+const float* Image::plane(int c) const noexcept { return base() + plane_pitch_ * std::size_t(c); }
 
 void Image::fill(int c, float value)
 {

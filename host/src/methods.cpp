@@ -217,6 +217,31 @@ Image Method::run(Context& context, const DeepShadowMap& map, const Image& recei
     return detail::visibility_output(receivers, [&](Image& out) { shade(context, prepared, receivers, settings, out); });
 }
 
+PreparedMap Method::prepare_view(Context& context, const ImageView& map, const MethodSettings& settings) const
+{
+    require_input(*this, MethodInput::ShadowMap);
+    auto input = std::make_shared<const InputImage>(map, name, input_info(MethodInput::ShadowMap).parameter);
+    PreparedMap prepared = prepare(context, input->image(), settings);
+    prepared.hold(std::move(input));
+    return prepared;
+}
+
+void Method::shade_view(Context& context, const PreparedMap& prepared, const ImageView& receivers,
+                        const MethodSettings& settings, const MutableImageView& out) const
+{
+    const InputImage input(receivers, name, "receivers");
+    OutputImage output(out, name, "out");
+    require_disjoint(receivers, out, name, "out");
+    shade(context, prepared, input.image(), settings, output.image());
+    output.commit();
+}
+
+void Method::run(Context& context, const ImageView& map, const ImageView& receivers, const MethodSettings& settings,
+                 const MutableImageView& out) const
+{
+    shade_view(context, prepare_view(context, map, settings), receivers, settings, out);
+}
+
 void Method::warm_up(Context& context, const MethodSettings& settings) const
 {
     if (context.backend() != Backend::OpenCL) return;

@@ -13,6 +13,7 @@
 
 #include "penumbra/context.h"
 #include "penumbra/image.h"
+#include "penumbra/image_view.h"
 
 namespace penumbra {
 
@@ -54,5 +55,13 @@ Image cross_bilateral(Context& context, const Image& mask, const Image& guide_de
 // mask itself): no allocation, for per-frame use.
 void cross_bilateral(Context& context, const Image& mask, const Image& guide_depth, const BilateralOptions& options,
                      Image& out, const Image* guide_normals = nullptr);
+
+// The same on views of the caller's memory (penumbra/image_view.h): read and
+// written in place where the layout allows (planar float32), else one copy
+// in and one out (an interleaved RGBA mask, say). `out` must not overlap an
+// input. Errors name the parameters "mask", "guide-depth", "guide-normals", "out".
+void cross_bilateral(Context& context, const ImageView& mask, const ImageView& guide_depth,
+                     const BilateralOptions& options, const MutableImageView& out,
+                     const ImageView* guide_normals = nullptr);
 
 }  // namespace penumbra

@@ -63,6 +63,12 @@ public:
     // writes); left to the writer, the first touch is the only one.
     using Uninitialized = AlignedBuffer::Uninitialized;
     Image(int width, int height, int channels, Uninitialized);
+    // Copies are deep and own their pixels, a borrowed image's too (with the
+    // same pitches).
+    Image(const Image& other);
+    Image& operator=(const Image& other);
+    Image(Image&&) noexcept = default;
+    Image& operator=(Image&&) noexcept = default;
 
     int width() const noexcept { return width_; }
     int height() const noexcept { return height_; }
@@ -71,6 +77,11 @@ public:
     // Elements (not bytes) between the starts of two rows, and of two planes.
     int pitch() const noexcept { return pitch_; }
     std::size_t plane_pitch() const noexcept { return plane_pitch_; }
+    // Elements from plane(0) to just past the last pixel of the last plane:
+    // what a backend may wrap or copy (a borrowed image's memory may end there).
+    std::size_t extent() const noexcept;
+    // True when the pixels are a caller's memory (penumbra/image_view.h).
+    bool borrowed() const noexcept { return borrowed_ != nullptr; }
 
     float* plane(int c) noexcept;
     const float* plane(int c) const noexcept;
@@ -82,11 +93,24 @@ public:
     void fill(int c, float value);
 
 private:
+    friend class InputImage;
+    friend class OutputImage;
+    // Borrows `pixels`: planes `plane_pitch` elements apart, rows `pitch` apart
+    // (the views' checks ran before).
+    struct Borrow {};
+    Image(float* pixels, int width, int height, int channels, int pitch, std::size_t plane_pitch, Borrow);
+
     void zero_padding();
+    float* base() noexcept { return borrowed_ ? borrowed_ : reinterpret_cast<float*>(storage_.data()); }
+    const float* base() const noexcept
+    {
+        return borrowed_ ? borrowed_ : reinterpret_cast<const float*>(storage_.data());
+    }
 
     int width_ = 0, height_ = 0, channels_ = 0, pitch_ = 0;
     std::size_t plane_pitch_ = 0;
     AlignedBuffer storage_;
+    float* borrowed_ = nullptr;  // the caller's pixels, when borrowed; storage_ is then empty
 };
 
 // True if every pixel of channel c lies in [lo, hi]; NaN never does. A fast,

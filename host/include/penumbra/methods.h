@@ -25,6 +25,7 @@
 #include "penumbra/deep_lookup.h"
 #include "penumbra/deep_shadow_map.h"
 #include "penumbra/image.h"
+#include "penumbra/image_view.h"
 #include "penumbra/moments.h"
 #include "penumbra/parameter_range.h"
 #include "penumbra/soft_pcf.h"
@@ -108,8 +109,12 @@ public:
     {
         return *std::any_cast<const std::shared_ptr<const Table>&>(table_);
     }
+    // Keeps `owner` (what map() refers to: a view's InputImage) as long as
+    // this prepared map and its copies live.
+    void hold(std::shared_ptr<const void> owner) { owner_ = std::move(owner); }
 
 private:
+    std::shared_ptr<const void> owner_;
     const Image* map_ = nullptr;
     const DeepShadowMap* deep_map_ = nullptr;
     std::any table_;  // std::shared_ptr<const Table>: shared, never copied
@@ -154,6 +159,19 @@ struct Method {
     Image run(Context& context, const Image& map, const Image& receivers, const MethodSettings& settings) const;
     Image run(Context& context, const DeepShadowMap& map, const Image& receivers,
               const MethodSettings& settings) const;
+
+    // The two steps on views of the caller's memory (penumbra/image_view.h):
+    // read and written in place where the layout allows, else one copy each
+    // (docs/integration.md). The map view may be 16-bit (value / 65535); the
+    // prepared map refers to the map's memory when it was read in place, so
+    // that memory must outlive it. `out`: one channel, the receivers' size,
+    // disjoint from the receivers. Errors name the parameters "depth",
+    // "receivers" and "out".
+    PreparedMap prepare_view(Context& context, const ImageView& map, const MethodSettings& settings) const;
+    void shade_view(Context& context, const PreparedMap& prepared, const ImageView& receivers,
+                    const MethodSettings& settings, const MutableImageView& out) const;
+    void run(Context& context, const ImageView& map, const ImageView& receivers, const MethodSettings& settings,
+             const MutableImageView& out) const;
     // Both steps on a one-texel map and receivers, on a backend that builds
     // or loads its programs on first use (OpenCL), so that this method's are
     // ready before a real run (start_context's `prepare`); nothing on the

@@ -1,0 +1,124 @@
+/* penumbra's C API: the library for C and for other languages' FFI.
+ *
+ * Opaque handles (a context owns a backend; a method is a shading method of
+ * the method table with its options parsed), views of the caller's memory
+ * (read and written in place where the layout allows, docs/integration.md),
+ * and status codes: every function that can fail returns one, and
+ * penumbra_last_error() gives the message of the calling thread's last
+ * failure. No C++ exception crosses this boundary.
+ *
+ * The same operations as the C++ API (penumbra/context.h, methods.h,
+ * bilateral.h, image_view.h), which this wraps: a context on a backend, a
+ * method by name with its options ("radius" = "3", as `penumbra shade
+ * --radius 3`), shading a shadow map's receivers into a caller's buffer, and
+ * the cross-bilateral blur. A context is used by one thread at a time;
+ * methods are immutable and may be shared. */
+#ifndef PENUMBRA_C_API_H
+#define PENUMBRA_C_API_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The categories of penumbra::Error (penumbra/error.h), then failures the C++
+ * API reports by other exceptions. */
+typedef enum {
+    PENUMBRA_OK = 0,
+    PENUMBRA_INVALID_ARGUMENT = 1, /* a parameter, size or value the caller passed */
+    PENUMBRA_INVALID_DATA = 2,     /* NaN, infinite or out-of-range values in an image */
+    PENUMBRA_IO = 3,
+    PENUMBRA_UNAVAILABLE = 4,      /* the backend, ISA or device does not exist here */
+    PENUMBRA_BACKEND = 5,          /* an OpenCL call or program build failed */
+    PENUMBRA_OUT_OF_MEMORY = 6,
+    PENUMBRA_INTERNAL = 7          /* a defect: please report it with the message */
+} penumbra_status;
+
+typedef enum {
+    PENUMBRA_BACKEND_AUTO = 0, /* PENUMBRA_BACKEND, else a GPU if any, else SIMD (penumbra/context.h) */
+    PENUMBRA_BACKEND_SIMD = 1,
+    PENUMBRA_BACKEND_OPENCL = 2,
+    PENUMBRA_BACKEND_SCALAR = 3
+} penumbra_backend;
+
+typedef enum { PENUMBRA_FLOAT32 = 0, PENUMBRA_UINT16 = 1 /* value / 65535; inputs only */ } penumbra_pixel_type;
+typedef enum { PENUMBRA_PLANAR = 0, PENUMBRA_INTERLEAVED = 1 } penumbra_layout;
+
+/* The caller's memory (penumbra/image_view.h): pitches in bytes, 0 for
+ * packed rows (and planes of height x row_pitch). */
+typedef struct {
+    const void* data;
+    int width, height, channels;
+    size_t row_pitch, plane_pitch;
+    penumbra_layout layout;
+    penumbra_pixel_type type;
+} penumbra_image_view;
+
+typedef struct {
+    void* data; /* float32 */
+    int width, height, channels;
+    size_t row_pitch, plane_pitch;
+    penumbra_layout layout;
+} penumbra_output_view;
+
+typedef struct penumbra_context penumbra_context;
+typedef struct penumbra_method penumbra_method;
+
+/* The message of this thread's last failed call ("vsm: ..."), or "" if none
+ * failed; valid until this thread's next failing call. */
+const char* penumbra_last_error(void);
+/* The parameter that last failure names ("radius", "receivers", "out"), or "". */
+const char* penumbra_last_error_parameter(void);
+/* "ok", "invalid argument", ...: for logs. */
+const char* penumbra_status_name(penumbra_status status);
+
+/* *context is set on success, NULL otherwise. An explicit backend that this
+ * machine lacks is PENUMBRA_UNAVAILABLE. */
+penumbra_status penumbra_context_create(penumbra_backend backend, penumbra_context** context);
+void penumbra_context_destroy(penumbra_context* context); /* NULL: nothing */
+/* What runs: "simd (avx512, 16 lanes)", "opencl (...)"; owned by the context. */
+const char* penumbra_context_description(const penumbra_context* context);
+
+/* A shading method of the method table ("vsm", "pcf", ...; `penumbra shade
+ * --help` lists them) with `count` options as names and texts. */
+penumbra_status penumbra_method_create(const char* name, const char* const* option_names,
+                                       const char* const* option_values, size_t count, penumbra_method** method);
+void penumbra_method_destroy(penumbra_method* method);
+
+/* Visibility in [0, 1] of each receiver into `out` (one channel, the
+ * receivers' size): the method's build step on `map` (one channel, depth in
+ * [0, 1]), then its shade step on `receivers` (u, v, z, ...). */
+penumbra_status penumbra_shade(penumbra_context* context, const penumbra_method* method,
+                               const penumbra_image_view* map, const penumbra_image_view* receivers,
+                               const penumbra_output_view* out);
+
+/* The cross-bilateral blur's options (penumbra/bilateral.h, BilateralOptions). */
+typedef enum { PENUMBRA_RANGE_GAUSSIAN = 0, PENUMBRA_RANGE_THRESHOLD = 1 } penumbra_blur_range;
+typedef enum { PENUMBRA_WINDOW_SQUARE = 0, PENUMBRA_WINDOW_DISK = 1 } penumbra_blur_window;
+typedef struct {
+    int radius;
+    float spatial_sigma;
+    penumbra_blur_range range;
+    int relative; /* 1: depth differences as a fraction of the centre depth */
+    float depth_sigma, depth_threshold;
+    penumbra_blur_window window;
+    int separable;
+    float normal_sigma;
+} penumbra_blur_options;
+
+/* The library's defaults: start from these and change what you need. */
+penumbra_blur_options penumbra_blur_defaults(void);
+
+/* The mask (1 to 4 channels) blurred into `out` (its size and channels),
+ * guided by `guide_depth` (one channel) and optionally `guide_normals` (3
+ * channels, or NULL). `options` NULL: the defaults. */
+penumbra_status penumbra_blur(penumbra_context* context, const penumbra_image_view* mask,
+                              const penumbra_image_view* guide_depth, const penumbra_image_view* guide_normals,
+                              const penumbra_blur_options* options, const penumbra_output_view* out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,244 @@
+/* The C API (penumbra/penumbra.h) from a C program, on every backend the
+ * machine has: shading through several methods with options, a 16-bit map,
+ * interleaved receivers at a padded pitch and the blur give bit for bit what
+ * the C++ API gives on the same input (cpp_result.cpp); bad input returns
+ * its status code, names its parameter and leaves a message. Exit 0 when
+ * every check passes. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cpp_result.h"
+#include "penumbra/penumbra.h"
+
+static int failures = 0;
+
+#define CHECK(condition, ...)                                      \
+    do {                                                           \
+        if (!(condition)) {                                        \
+            ++failures;                                            \
+            fprintf(stderr, "%s:%d: check failed: ", __FILE__, __LINE__); \
+            fprintf(stderr, __VA_ARGS__);                          \
+            fprintf(stderr, "\n");                                 \
+        }                                                          \
+    } while (0)
+
+enum { MAP_W = 13, MAP_H = 7, W = 9, H = 5, PAD = 3 /* floats past each interleaved row */ };
+
+static uint32_t lcg_state = 12345u;
+static float next_unit(void)
+{
+    lcg_state = lcg_state * 1664525u + 1013904223u;
+    return (float)(lcg_state >> 8) / 16777216.0f;
+}
+
+/* The inputs, once in the C++ reference's packed planar form and once as a C
+ * caller holds them: receivers interleaved (u, v, z) with padding per row. */
+static float map[MAP_W * MAP_H];
+static uint16_t map16[MAP_W * MAP_H];
+static float map16_values[MAP_W * MAP_H];
+static float receivers_planar[3 * W * H];
+static float receivers_interleaved[H * (3 * W + PAD)];
+
+static void make_inputs(void)
+{
+    for (int i = 0; i < MAP_W * MAP_H; ++i) {
+        map[i] = next_unit();
+        map16[i] = (uint16_t)(next_unit() * 65535.0f);
+        map16_values[i] = (float)map16[i] / 65535.0f;
+    }
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const float v = next_unit();
+                receivers_planar[(c * H + y) * W + x] = v;
+                receivers_interleaved[y * (3 * W + PAD) + 3 * x + c] = v;
+            }
+}
+
+static penumbra_image_view map_view(void)
+{
+    penumbra_image_view v = {map, MAP_W, MAP_H, 1, 0, 0, PENUMBRA_PLANAR, PENUMBRA_FLOAT32};
+    return v;
+}
+
+static penumbra_image_view receivers_view(void)
+{
+    penumbra_image_view v = {receivers_interleaved, W, H, 3, (3 * W + PAD) * sizeof(float), 0,
+                             PENUMBRA_INTERLEAVED, PENUMBRA_FLOAT32};
+    return v;
+}
+
+static penumbra_output_view output_view(float* out, int channels)
+{
+    penumbra_output_view v = {out, W, H, channels, 0, 0, PENUMBRA_PLANAR};
+    return v;
+}
+
+static int same_floats(const float* a, const float* b, int n)
+{
+    for (int i = 0; i < n; ++i)
+        if (memcmp(&a[i], &b[i], sizeof(float)) != 0) return 0;
+    return 1;
+}
+
+struct MethodCase {
+    const char* name;
+    const char* options[2][2]; /* name, value */
+    size_t count;
+};
+
+static const struct MethodCase kMethods[] = {
+    {"vsm", {{"radius", "3"}}, 1},
+    {"msm", {{"radius", "2"}}, 1},
+    {"pcf", {{"radius", "1"}, {"depth-bias", "0.002"}}, 2},
+    {"pcss", {{"light-size", "0.05"}}, 1},
+    {"evsm4", {{"radius", "2"}}, 1},
+};
+
+static void shade_matches_cpp(const char* backend_name, penumbra_context* context, const struct MethodCase* m,
+                              const float* map_values, penumbra_image_view map_in)
+{
+    const char* names[2] = {m->options[0][0], m->options[1][0]};
+    const char* values[2] = {m->options[0][1], m->options[1][1]};
+    penumbra_method* method = NULL;
+    penumbra_status s = penumbra_method_create(m->name, names, values, m->count, &method);
+    CHECK(s == PENUMBRA_OK, "%s: method_create: %s", m->name, penumbra_last_error());
+    if (s != PENUMBRA_OK) return;
+
+    float got[W * H], expected[W * H];
+    const penumbra_output_view out = output_view(got, 1);
+    const penumbra_image_view receivers = receivers_view();
+    s = penumbra_shade(context, method, &map_in, &receivers, &out);
+    CHECK(s == PENUMBRA_OK, "%s on %s: shade: %s", m->name, backend_name, penumbra_last_error());
+    const int r = cpp_shade(backend_name, m->name, names, values, m->count, map_values, MAP_W, MAP_H,
+                            receivers_planar, 3, W, H, expected);
+    CHECK(r == 0, "%s on %s: the C++ reference failed", m->name, backend_name);
+    if (s == PENUMBRA_OK && r == 0)
+        CHECK(same_floats(got, expected, W * H), "%s on %s: the C API's result differs from the C++ API's", m->name,
+              backend_name);
+    penumbra_method_destroy(method);
+}
+
+static void blur_matches_cpp(const char* backend_name, penumbra_context* context)
+{
+    enum { C = 2 };
+    float mask[C * W * H], guide[W * H], got[C * W * H], expected[C * W * H];
+    for (int i = 0; i < C * W * H; ++i) mask[i] = next_unit();
+    for (int i = 0; i < W * H; ++i) guide[i] = 0.5f + next_unit();
+    const penumbra_image_view mask_view = {mask, W, H, C, 0, 0, PENUMBRA_PLANAR, PENUMBRA_FLOAT32};
+    const penumbra_image_view guide_view = {guide, W, H, 1, 0, 0, PENUMBRA_PLANAR, PENUMBRA_FLOAT32};
+    const penumbra_output_view out = output_view(got, C);
+    penumbra_blur_options options = penumbra_blur_defaults();
+    options.radius = 1;
+    const penumbra_status s = penumbra_blur(context, &mask_view, &guide_view, NULL, &options, &out);
+    CHECK(s == PENUMBRA_OK, "blur on %s: %s", backend_name, penumbra_last_error());
+    const int r = cpp_blur(backend_name, mask, C, guide, W, H, 1, expected);
+    CHECK(r == 0, "blur on %s: the C++ reference failed", backend_name);
+    if (s == PENUMBRA_OK && r == 0)
+        CHECK(same_floats(got, expected, C * W * H), "blur on %s: the C API's result differs", backend_name);
+}
+
+/* A call that must fail with `status`, naming `parameter`, with a message holding `says`. */
+static void expect_failure(penumbra_status got, penumbra_status status, const char* parameter, const char* says,
+                           const char* what)
+{
+    CHECK(got == status, "%s: status %s, expected %s (%s)", what, penumbra_status_name(got),
+          penumbra_status_name(status), penumbra_last_error());
+    CHECK(strcmp(penumbra_last_error_parameter(), parameter) == 0, "%s: parameter '%s', expected '%s'", what,
+          penumbra_last_error_parameter(), parameter);
+    CHECK(strstr(penumbra_last_error(), says) != NULL, "%s: message '%s' lacks '%s'", what, penumbra_last_error(),
+          says);
+}
+
+static void bad_input(penumbra_context* context)
+{
+    penumbra_method* method = NULL;
+    const char* radius[1] = {"radius"};
+    const char* minus_one[1] = {"-1"};
+    expect_failure(penumbra_method_create("nope", NULL, NULL, 0, &method), PENUMBRA_INVALID_ARGUMENT, "method",
+                   "vsm", "an unknown method");
+    CHECK(method == NULL, "a failed method_create leaves the handle NULL");
+    expect_failure(penumbra_method_create("vsm", radius, minus_one, 1, &method), PENUMBRA_INVALID_ARGUMENT, "radius",
+                   "radius", "a radius of -1");
+    penumbra_context* none = NULL;
+    expect_failure(penumbra_context_create((penumbra_backend)42, &none), PENUMBRA_INVALID_ARGUMENT, "backend", "42",
+                   "an unknown backend");
+    CHECK(none == NULL, "a failed context_create leaves the handle NULL");
+
+    CHECK(penumbra_method_create("vsm", NULL, NULL, 0, &method) == PENUMBRA_OK, "vsm: %s", penumbra_last_error());
+    float out_values[W * H];
+    const penumbra_output_view out = output_view(out_values, 1);
+    const penumbra_image_view m = map_view();
+    penumbra_image_view r = receivers_view();
+    expect_failure(penumbra_shade(NULL, method, &m, &r, &out), PENUMBRA_INVALID_ARGUMENT, "context", "NULL",
+                   "a NULL context");
+    expect_failure(penumbra_shade(context, method, &m, NULL, &out), PENUMBRA_INVALID_ARGUMENT, "receivers", "NULL",
+                   "NULL receivers");
+    r.row_pitch = 3 * W * sizeof(float) - 4;
+    expect_failure(penumbra_shade(context, method, &m, &r, &out), PENUMBRA_INVALID_ARGUMENT, "receivers",
+                   "shorter than a row", "a row pitch too small");
+    r = receivers_view();
+    r.data = NULL;
+    expect_failure(penumbra_shade(context, method, &m, &r, &out), PENUMBRA_INVALID_ARGUMENT, "receivers",
+                   "null data pointer", "a NULL pointer in a view");
+    r = receivers_view();
+    r.height = 0;
+    expect_failure(penumbra_shade(context, method, &m, &r, &out), PENUMBRA_INVALID_ARGUMENT, "receivers",
+                   "at least one pixel", "an empty view");
+    penumbra_output_view small = out;
+    small.width = W - 1;
+    r = receivers_view();
+    expect_failure(penumbra_shade(context, method, &m, &r, &small), PENUMBRA_INVALID_ARGUMENT, "", "receivers",
+                   "an output of another size");
+
+    /* A NaN receiver is bad data, named with its pixel. */
+    float saved = receivers_interleaved[3 * 4 + 2];
+    receivers_interleaved[3 * 4 + 2] = NAN;
+    expect_failure(penumbra_shade(context, method, &m, &r, &out), PENUMBRA_INVALID_DATA, "receivers", "(4, 0)",
+                   "a NaN receiver");
+    receivers_interleaved[3 * 4 + 2] = saved;
+    penumbra_method_destroy(method);
+
+    penumbra_blur_options options = penumbra_blur_defaults();
+    options.radius = 99;
+    const penumbra_image_view guide = {map, W, H, 1, MAP_W * sizeof(float), 0, PENUMBRA_PLANAR, PENUMBRA_FLOAT32};
+    const penumbra_output_view blurred = output_view(out_values, 1);
+    expect_failure(penumbra_blur(context, &guide, &guide, NULL, &options, &blurred), PENUMBRA_INVALID_ARGUMENT, "",
+                   "radius", "a blur radius of 99");
+}
+
+int main(void)
+{
+    make_inputs();
+    static const struct {
+        const char* name;
+        penumbra_backend backend;
+    } kBackends[] = {{"scalar", PENUMBRA_BACKEND_SCALAR}, {"simd", PENUMBRA_BACKEND_SIMD},
+                     {"opencl", PENUMBRA_BACKEND_OPENCL}};
+    int ran = 0;
+    for (size_t b = 0; b < sizeof kBackends / sizeof kBackends[0]; ++b) {
+        penumbra_context* context = NULL;
+        const penumbra_status s = penumbra_context_create(kBackends[b].backend, &context);
+        if (s == PENUMBRA_UNAVAILABLE) {
+            printf("%s: unavailable here (%s); skipped\n", kBackends[b].name, penumbra_last_error());
+            continue;
+        }
+        CHECK(s == PENUMBRA_OK, "context %s: %s", kBackends[b].name, penumbra_last_error());
+        if (s != PENUMBRA_OK) continue;
+        printf("%s: %s\n", kBackends[b].name, penumbra_context_description(context));
+        ++ran;
+        for (size_t i = 0; i < sizeof kMethods / sizeof kMethods[0]; ++i)
+            shade_matches_cpp(kBackends[b].name, context, &kMethods[i], map, map_view());
+        const penumbra_image_view depth16 = {map16, MAP_W, MAP_H, 1, 0, 0, PENUMBRA_PLANAR, PENUMBRA_UINT16};
+        shade_matches_cpp(kBackends[b].name, context, &kMethods[0], map16_values, depth16);
+        blur_matches_cpp(kBackends[b].name, context);
+        bad_input(context);
+        penumbra_context_destroy(context);
+    }
+    CHECK(ran >= 2, "only %d backends ran (scalar and simd are always built)", ran);
+    printf("%d failures\n", failures);
+    return failures == 0 ? 0 : 1;
+}
