@@ -208,6 +208,9 @@ LookupRun ssao_vo_run()
         o.max_screen_radius = 1.0;
         o.unusable = SsaoUnusable::Renormalise;
         ssao_obscurance(context, depth, 10.0, o, out);
+    };
+}
+
 // Pismo's two passes run together (penumbra/pismo.h): the grid's (u, v) as
 // ground points x = 4u - 2, z = v - 1/2 of the half-plane scene, across its
 // penumbra and on both sides (support/pismo_scenes.h).
