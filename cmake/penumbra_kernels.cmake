@@ -32,6 +32,7 @@ set(PENUMBRA_KERNEL_FILES
   kernels/ambient_volumes.h
   kernels/ambient_sh.h
   kernels/dsm_lookup.h
+  kernels/pismo.h
 )
 
 set(_gen ${CMAKE_CURRENT_BINARY_DIR}/generated)
@@ -67,6 +68,7 @@ set(PENUMBRA_CL_FAMILY_FILES_pcf kernels/receiver_slope.h kernels/depth_bias.h k
     kernels/hammersley.h kernels/pcss.h kernels/burley.h)
 set(PENUMBRA_CL_FAMILY_FILES_ambient kernels/ambient_volumes.h kernels/ambient_sh.h)
 set(PENUMBRA_CL_FAMILY_FILES_dsm kernels/receiver_slope.h kernels/dsm_lookup.h)
+set(PENUMBRA_CL_FAMILY_FILES_pismo kernels/receiver_slope.h kernels/pismo.h)
 
 set(_table ${CMAKE_CURRENT_SOURCE_DIR}/kernels/kernel_table.h)
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_table})  # a new family reconfigures

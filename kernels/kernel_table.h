@@ -26,7 +26,7 @@
 #define PENUMBRA_KERNEL_TABLE_H
 
 /* The families, each an OpenCL program of its own. */
-#define PN_KERNEL_FAMILIES(F) F(moment_table) F(chebyshev) F(bilateral) F(sdf) F(moments) F(pcf) F(ambient) F(dsm)
+#define PN_KERNEL_FAMILIES(F) F(moment_table) F(chebyshev) F(bilateral) F(sdf) F(moments) F(pcf) F(ambient) F(dsm) F(pismo)
 
 #define PN_KERNEL_TABLE(X)                                                                                  \
     X(moment_table, sat_bands_float, task, SatParams,                                                    \
@@ -68,6 +68,11 @@
     X(ambient, ambient_sh, pixel, AmbientParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))    \
     X(ambient, ambient_volumes, pixel, AmbientParams, (PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int))) \
     X(dsm, dsm_lookup, pixel, DsmParams,                                                                   \
-      (PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
+      (PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))     \
+    X(pismo, pismo_estimates, pixel, PismoParams,                                                          \
+      (PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))     \
+    X(pismo, pismo_visibility, pixel, PismoParams,                                                         \
+      (PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), \
+       PN_IN(float), PN_OUT(float), PN_OUT(int)))
 
 #endif

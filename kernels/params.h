@@ -249,6 +249,23 @@ typedef struct {
     float bias;        /* subtracted from the receiver's depth */
 } DsmParams;
 
+/* Pismo's shadow-ray test (kernels/pismo.h): the maps are packed arrays
+ * (host/src/pismo_pack.cpp; the record layouts below are the two files'
+ * contract). Every map has the same size. */
+#define PN_PISMO_CAMERA_FLOATS 16  /* position, right, down, forward, 2 tan(fov/2), 2 tan(fov/2) / W, unused x2 */
+#define PN_PISMO_TRIANGLE_UINTS 5  /* corners a, b, c (map indices), first ray, end of its rays */
+#define PN_PISMO_RAY_FLOATS 4      /* barycentric w_a, w_b, w_c, weight */
+typedef struct {
+    pn_dims receivers;  /* planes x, y, z: world position (a chunk of the caller's rows) */
+    pn_dims out;        /* estimates: maps x receiver rows; visibility: one plane of the receivers' size */
+    pn_dims estimates;  /* visibility: the estimates image (maps x receiver rows); unused by the estimates */
+    int map_width, map_height;
+    int maps;           /* < 2^31 / (map_width map_height): pixel indices are int */
+    int triangles;
+    int last_depth;     /* max(depths - 1, 0): the depth array holds at least one element */
+    float bias_texels;  /* texel footprints at the point's depth */
+} PismoParams;
+
 #ifdef __cplusplus
 }  /* namespace penumbra */
 #endif

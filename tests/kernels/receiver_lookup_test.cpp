@@ -28,9 +28,11 @@
 #include "penumbra/chebyshev.h"
 #include "penumbra/deep_shadow_map.h"
 #include "penumbra/moments.h"
+#include "penumbra/pismo.h"
 #include "support/backends.h"
 #include "support/errors.h"
 #include "support/maps.h"
+#include "support/pismo_scenes.h"
 
 namespace penumbra {
 namespace {
@@ -161,6 +163,26 @@ LookupRun ambient_sh_run()
     };
 }
 
+// Pismo's two passes run together (penumbra/pismo.h): the grid's (u, v) as
+// ground points x = 4u - 2, z = v - 1/2 of the half-plane scene, across its
+// penumbra and on both sides (support/pismo_scenes.h).
+LookupRun pismo_run()
+{
+    return [](Context& context, const Image& receivers, Image& out) {
+        reference::LayeredMapOptions mo;
+        mo.size = 64;
+        static const PismoMaps maps =
+            testing::library_maps(reference::render_pismo_maps(testing::half_plane_scene(), 0, mo));
+        Image world(receivers.width(), receivers.height(), 3);
+        for (int y = 0; y < receivers.height(); ++y)
+            for (int x = 0; x < receivers.width(); ++x) {
+                world.at(0, x, y) = 4 * receivers.at(0, x, y) - 2;
+                world.at(2, x, y) = receivers.at(1, x, y) - 0.5f;
+            }
+        pismo_shade(context, maps, world, {}, out);
+    };
+}
+
 // The Params of each lookup-shaped entry, as its operation fills them
 // (host/src/chebyshev.cpp, moments.cpp); an empty run for an entry with no case.
 template <KernelId K>
@@ -238,6 +260,8 @@ LookupRun lookup_case(const Sources& s)
     } else if constexpr (std::is_same_v<Params, AmbientParams>) {
         if (name == "ambient_volumes") return ambient_volumes_run();
         if (name == "ambient_sh") return ambient_sh_run();
+    } else if constexpr (std::is_same_v<Params, PismoParams>) {
+        return pismo_run();
     }
     return {};
 }

@@ -36,9 +36,8 @@ Scores score(const Scene& scene, const Receivers& rx, const Image& truth, int le
         for (int x = 0; x < rx.width(); ++x) {
             if (rx.mask.at(0, x, y) == 0) continue;
             const Vec3 p{rx.world_position.at(0, x, y), rx.world_position.at(1, x, y), rx.world_position.at(2, x, y)};
-            const std::uint64_t stream = std::uint64_t(y) * rx.width() + x;
-            pismo.at(0, x, y) = float(testing::pismo_visibility(layered, p, po, stream));
-            maximum.at(0, x, y) = float(testing::pismo_visibility(farthest, p, po, stream));
+            pismo.at(0, x, y) = float(testing::pismo_visibility(layered, p, po));
+            maximum.at(0, x, y) = float(testing::pismo_visibility(farthest, p, po));
             averaged.at(0, x, y) = float(testing::averaged_hard_shadows(layered, p, po));
         }
     return {rmse(pismo, truth, &rx.mask), rmse(averaged, truth, &rx.mask), rmse(maximum, truth, &rx.mask)};

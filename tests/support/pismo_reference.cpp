@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <random>
+#include <cstdint>
 
 namespace penumbra::testing {
 namespace {
@@ -56,6 +56,17 @@ std::optional<double> nearest_occluder_depth(const LayeredDepthMap& bled, Vec3 p
     return nearest;
 }
 
+// The ray pattern (host/src/pismo_rays.h states it; written here again from
+// that statement): stratum (i, j) of triangle t, index q = j n + i, jittered
+// by (lowbias32(k) >> 8) / 2^24 with k = 2 (4096 t + q) and k + 1, mod 2^32.
+double jitter(std::uint32_t k)
+{
+    k = (k ^ (k >> 16)) * 0x7feb352du;
+    k = (k ^ (k >> 15)) * 0x846ca68bu;
+    k ^= k >> 16;
+    return std::ldexp(double(k >> 8), -24);
+}
+
 // A point of the unit square to barycentric weights, area-preserving.
 std::array<double, 3> barycentric(double a, double b)
 {
@@ -64,6 +75,11 @@ std::array<double, 3> barycentric(double a, double b)
 }
 
 }  // namespace
+
+bool hard_shadow_test(const LayeredDepthMap& map, Vec3 p, double bias_texels)
+{
+    return occludes(map, p, p, bias_texels);
+}
 
 PismoReferenceMaps PismoReferenceMaps::layered(const reference::PismoMaps& maps)
 {
@@ -82,13 +98,11 @@ PismoReferenceMaps PismoReferenceMaps::maximum_depth(const reference::PismoMaps&
     return out;
 }
 
-double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o, std::uint64_t stream)
+double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o)
 {
     const reference::LightMesh& mesh = maps.source->mesh;
     std::vector<std::optional<double>> estimate(mesh.vertices.size());
     for (std::size_t j = 0; j < estimate.size(); ++j) estimate[j] = nearest_occluder_depth(maps.bled[j], p, o.bias_texels);
-    std::mt19937_64 random(o.seed * 0x9e3779b97f4a7c15ull ^ stream);
-    std::uniform_real_distribution<double> unit(0, 1);
     const double total_area = mesh.area();
     double occlusion = 0;
     for (int t = 0; t < int(mesh.triangles.size()); ++t) {
@@ -97,7 +111,8 @@ double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoRefer
         const int n = std::max(1, int(std::lround(std::sqrt(o.rays * share))));
         for (int sj = 0; sj < n; ++sj)
             for (int si = 0; si < n; ++si) {
-                const auto w = barycentric((si + unit(random)) / n, (sj + unit(random)) / n);
+                const std::uint32_t k = 2u * (4096u * std::uint32_t(t) + std::uint32_t(sj * n + si));
+                const auto w = barycentric((si + jitter(k)) / n, (sj + jitter(k + 1)) / n);
                 Vec3 light{};
                 for (int k = 0; k < 3; ++k) light = light + mesh.vertices[std::size_t(corners[k])] * w[k];
                 double distance = 0, weight = 0;

@@ -17,7 +17,6 @@ struct PismoReferenceOptions {
     // A layer occludes a point when it is nearer than the point's depth minus
     // bias_texels times the footprint of one texel at that depth.
     double bias_texels = 2;
-    std::uint64_t seed = 1;
 };
 
 // The maps Pismo reads: the layered maps (or their maximum-depth variant) and
@@ -29,9 +28,13 @@ struct PismoReferenceMaps {
     static PismoReferenceMaps maximum_depth(const reference::PismoMaps& maps);
 };
 
-// The light's visible fraction at point p, in [0, 1]; `stream` names its ray samples.
-double pismo_visibility(const PismoReferenceMaps& maps, reference::Vec3 p, const PismoReferenceOptions& options,
-                        std::uint64_t stream);
+// The light's visible fraction at point p, in [0, 1], over the kernel's ray
+// pattern (host/src/pismo_rays.h), the same for every point.
+double pismo_visibility(const PismoReferenceMaps& maps, reference::Vec3 p, const PismoReferenceOptions& options);
+
+// The hard shadow-map test of one map at p: its nearest layer at p's pixel
+// nearer than p's depth minus the bias (false outside the map).
+bool hard_shadow_test(const LayeredDepthMap& map, reference::Vec3 p, double bias_texels);
 
 // The same maps as hard shadows, each weighted by its vertex's share of the
 // light's area (LightMesh::vertex_weights).

@@ -1,0 +1,199 @@
+// Pismo's shadow-ray test (penumbra/pismo.h): the maps checked and prepared
+// once (PismoMaps), then per chunk of receiver rows the two passes of
+// kernels/pismo.h through the generic lookup: the first estimates of every
+// map, then the rays.
+#include "penumbra/pismo.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "host/backend/backend.h"
+#include "penumbra/error.h"
+#include "pismo_pack.h"
+#include "pismo_rays.h"
+#include "visibility_output.h"
+
+namespace penumbra {
+namespace {
+
+const std::string kOperation = "pismo";
+
+// Pixel and depth indices are int in the kernel.
+constexpr std::size_t kMaxIndex = (std::size_t(1) << 31) - 1;
+
+void require_maps(bool condition, const std::string& message) { require(condition, kOperation, "maps", message); }
+
+double distance(const std::array<double, 3>& a, const std::array<double, 3>& b)
+{
+    return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+}
+
+void check_mesh(const std::vector<std::array<double, 3>>& vertices, const std::vector<std::array<int, 3>>& triangles)
+{
+    require_maps(!vertices.empty() && !triangles.empty(), "the light mesh is empty (" +
+                                                              std::to_string(vertices.size()) + " vertices, " +
+                                                              std::to_string(triangles.size()) + " triangles)");
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        for (int k : triangles[t])
+            require_maps(k >= 0 && std::size_t(k) < vertices.size(),
+                         "triangle " + std::to_string(t) + " names vertex " + std::to_string(k) + " of " +
+                             std::to_string(vertices.size()));
+        require_maps(detail::pismo_triangle_area(vertices, triangles[t]) > 0,
+                     "triangle " + std::to_string(t) + " has no area; drop it from the mesh");
+    }
+}
+
+void check_maps(const std::vector<std::array<double, 3>>& vertices, const std::vector<LayeredDepthMap>& maps)
+{
+    require_maps(maps.size() == vertices.size(), "the mesh has " + std::to_string(vertices.size()) +
+                                                     " vertices but there are " + std::to_string(maps.size()) +
+                                                     " maps; give one map per vertex, in vertex order");
+    const int w = maps.front().width(), h = maps.front().height();
+    require_maps(w >= 1 && h >= 1, "map 0 has no pixels (" + std::to_string(w) + "x" + std::to_string(h) + ")");
+    std::size_t depths = 0;
+    for (std::size_t j = 0; j < maps.size(); ++j) {
+        const LayeredDepthMap& m = maps[j];
+        require_maps(m.width() == w && m.height() == h, "map " + std::to_string(j) + " is " +
+                                                            std::to_string(m.width()) + "x" +
+                                                            std::to_string(m.height()) + ", map 0 " +
+                                                            std::to_string(w) + "x" + std::to_string(h) +
+                                                            "; render every map at one size");
+        const double away = distance(m.camera().position, vertices[j]);
+        require_maps(away <= 1e-6 * std::max(1.0, distance(vertices[j], {0, 0, 0})),
+                     "the camera of map " + std::to_string(j) + " lies " + std::to_string(away) +
+                         " from its vertex; render each map from its own vertex");
+        depths += m.depths().size();
+    }
+    require_maps(std::size_t(w) * std::size_t(h) * maps.size() <= kMaxIndex && depths <= kMaxIndex,
+                 "the maps hold " + std::to_string(depths) + " depths in " +
+                     std::to_string(std::size_t(w) * std::size_t(h) * maps.size()) +
+                     " pixels; the kernel indexes fewer than 2^31: use smaller maps or a coarser light mesh");
+}
+
+void check_receivers(const Image& receivers, const Image& out)
+{
+    require(receivers.channels() >= 3 && !receivers.empty(), kOperation, "receivers",
+            "the receivers need channels x, y, z, world positions (got " + std::to_string(receivers.channels()) +
+                " channels, " + std::to_string(receivers.width()) + "x" + std::to_string(receivers.height()) + ")");
+    require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), kOperation,
+            "out",
+            "the output must be a 1-channel image of the receivers' size (" + std::to_string(receivers.width()) + "x" +
+                std::to_string(receivers.height()) + ")");
+}
+
+// Rows y0 .. y0 + rows - 1 of the receivers' x, y, z planes.
+Image receiver_rows(const Image& receivers, int y0, int rows)
+{
+    Image chunk(receivers.width(), rows, 3, Image::Uninitialized{});
+    for (int c = 0; c < 3; ++c)
+        for (int y = 0; y < rows; ++y)
+            std::memcpy(chunk.row(c, y), receivers.row(c, y0 + y), sizeof(float) * std::size_t(receivers.width()));
+    return chunk;
+}
+
+// What the two passes share: the packed maps and the ray table.
+struct Prepared {
+    detail::PismoLayers test, bled;
+    std::vector<float> cameras;
+    detail::PismoRayTable rays;
+    PismoParams params{};
+};
+
+Prepared prepare(const PismoMaps& maps, detail::PismoRayTable rays, float bias_texels)
+{
+    Prepared s{detail::pack_layers(maps.test_maps()), detail::pack_layers(maps.bled_maps()),
+               detail::pack_cameras(maps.test_maps()), std::move(rays), PismoParams{}};
+    s.params.map_width = maps.test_maps().front().width();
+    s.params.map_height = maps.test_maps().front().height();
+    s.params.maps = int(maps.test_maps().size());
+    s.params.triangles = int(s.rays.triangles.size() / PN_PISMO_TRIANGLE_UINTS);
+    s.params.bias_texels = bias_texels;
+    return s;
+}
+
+// One chunk of receiver rows: the estimates, then the rays, into `shaded`.
+void shade_chunk(detail::BackendImpl& backend, const Prepared& s, const Image& chunk, Image& shaded, int* bad_rows)
+{
+    Image estimates(chunk.width(), chunk.height() * s.params.maps, 1, Image::Uninitialized{});
+    PismoParams p = s.params;
+    p.receivers = detail::dims_of(chunk);
+    p.out = detail::dims_of(estimates);
+    p.last_depth = std::max(s.bled.depth_count - 1, 0);
+    detail::receiver_lookup<detail::KernelId::pismo_estimates>(
+        backend, detail::LookupSource({std::span(s.bled.offsets), std::span(s.bled.depths), std::span(s.cameras)}),
+        chunk, p, estimates, bad_rows);
+    p.out = detail::dims_of(shaded);
+    p.estimates = detail::dims_of(estimates);
+    p.last_depth = std::max(s.test.depth_count - 1, 0);
+    const std::span<const float> estimate_values(estimates.plane(0), estimates.plane_pitch());
+    detail::receiver_lookup<detail::KernelId::pismo_visibility>(
+        backend,
+        detail::LookupSource({std::span(s.test.offsets), std::span(s.test.depths), std::span(s.cameras),
+                              std::span(s.rays.triangles), std::span(s.rays.rays), estimate_values}),
+        chunk, p, shaded, bad_rows);
+}
+
+}  // namespace
+
+PismoMaps::PismoMaps(std::vector<std::array<double, 3>> vertices, std::vector<std::array<int, 3>> triangles,
+                     const std::vector<LayeredDepthMap>& maps, PismoDepths depths)
+    : vertices_(std::move(vertices)), triangles_(std::move(triangles)), depths_(depths)
+{
+    check_mesh(vertices_, triangles_);
+    check_maps(vertices_, maps);
+    if (depths == PismoDepths::MaximumDepth)
+        for (const LayeredDepthMap& m : maps) test_.push_back(maximum_depth_map(m));
+    else
+        test_ = maps;
+    for (const LayeredDepthMap& m : test_) bled_.push_back(bleed_empty_pixels(m));
+    std::size_t bled_depths = 0;
+    for (const LayeredDepthMap& m : bled_) bled_depths += m.depths().size();
+    require_maps(bled_depths <= kMaxIndex, "the bled maps hold " + std::to_string(bled_depths) +
+                                               " depths; the kernel indexes fewer than 2^31: use smaller maps");
+}
+
+std::size_t PismoMaps::bytes() const noexcept
+{
+    std::size_t total = 0;
+    for (const auto* set : {&test_, &bled_})
+        for (const LayeredDepthMap& m : *set) total += m.bytes();
+    return total;
+}
+
+void detail::pismo_shade_rays(Context& context, const PismoMaps& maps, PismoRayTable rays, float bias_texels,
+                              const Image& receivers, Image& out, std::size_t estimate_bytes)
+{
+    require_maps(!maps.empty(), "no maps: build PismoMaps from a light mesh and its vertices' layered maps first");
+    check_receivers(receivers, out);
+    const Prepared s = prepare(maps, std::move(rays), bias_texels);
+    const std::size_t row_bytes = sizeof(float) * std::size_t(receivers.width()) * std::size_t(s.params.maps);
+    const int rows = int(std::clamp<std::size_t>(estimate_bytes / row_bytes, 1, std::size_t(receivers.height())));
+    for (int y0 = 0; y0 < receivers.height(); y0 += rows) {
+        const int n = std::min(rows, receivers.height() - y0);
+        const Image chunk = receiver_rows(receivers, y0, n);
+        Image shaded(receivers.width(), n, 1, Image::Uninitialized{});
+        std::vector<int> bad_rows(std::size_t(n), 0);
+        shade_chunk(context.impl(), s, chunk, shaded, bad_rows.data());
+        // The report names the pixel in the caller's rows, on the planes read.
+        if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end())
+            require_finite(receiver_rows(receivers, 0, receivers.height()), kOperation, "the receivers image",
+                           "receivers");
+        for (int y = 0; y < n; ++y)
+            std::memcpy(out.row(0, y0 + y), shaded.row(0, y), sizeof(float) * std::size_t(receivers.width()));
+    }
+}
+
+void pismo_shade(Context& context, const PismoMaps& maps, const Image& receivers, const PismoOptions& o, Image& out)
+{
+    check(kPismoRaysRange, o.rays, kOperation);
+    check(kPismoBiasRange, o.bias_texels, kOperation);
+    detail::pismo_shade_rays(context, maps, detail::pismo_ray_table(maps.vertices(), maps.triangles(), o.rays),
+                             o.bias_texels, receivers, out);
+}
+
+PN_ALLOCATING_VISIBILITY(pismo_shade, PismoMaps, PismoOptions)
+
+}  // namespace penumbra

@@ -1,0 +1,218 @@
+/* Pismo's shadow-ray test (Neulander, "Pismo: Parallax-Interpolated Shadow
+ * Map Occlusion", Rhythm & Hues; notes in ../shared/seeds/002;
+ * docs/pismo.md, "The kernel"). The light is a triangle mesh with one
+ * perspective layered depth map per vertex.
+ *
+ * Two entries, run one after the other over a chunk of receivers:
+ *
+ *   pismo_estimates  per receiver P and map j: the first estimate D_j, the
+ *                    radial depth of the farthest layer of the BLED map j, at
+ *                    P's pixel, nearer than P's own depth minus the bias;
+ *                    -1 where there is none (no such layer, or P outside the
+ *                    map). Out: pixel (x, j rows + y) for receiver (x, y),
+ *                    so every estimate is computed once per P per map and
+ *                    read back by the second entry with a row load.
+ *   pismo_visibility per receiver P, for each ray i of each light triangle
+ *                    (a, b, c), barycentric weights w = (w_a, w_b, w_c):
+ *                      L_i = sum w_k V_k                (a point on the light)
+ *                      D   = sum w_k D_k / sum w_k over the corners with an
+ *                            estimate (none: O_i = P)
+ *                      O_i = L_i + D (P - L_i) / |P - L_i|
+ *                      lit_i = sum w_k (1 - o_k), o_k = 1 when the TEST map
+ *                            k holds, at O_i's pixel, a layer nearer than
+ *                            |P - V_k| minus the bias (P behind the occluder)
+ *                    Out: sum_i weight_i lit_i / sum_i weight_i sum_k w_k,
+ *                    in [0, 1] (the denominator is 1 up to float rounding).
+ *
+ * Sources (host/src/pismo_pack.cpp packs them; keep the layouts in sync):
+ *   offsets   uint: every map's offsets into `depths`, maps one after
+ *             another (map j's pixel q at j W H + q), then one end entry
+ *   depths    float: every layer, nearest first within a pixel
+ *   cameras   PN_PISMO_CAMERA_FLOATS floats per map: position, right, down,
+ *             forward (3 each), 2 tan(fov/2), 2 tan(fov/2) / W, 2 unused
+ *   triangles PN_PISMO_TRIANGLE_UINTS uints per triangle: corners a, b, c,
+ *             its first ray and the end of its rays
+ *   rays      PN_PISMO_RAY_FLOATS floats per ray: w_a, w_b, w_c, its weight
+ *             (the triangle's share of the light's area over its strata)
+ * The ray pattern is the same for every receiver (host/src/pismo_rays.cpp
+ * states the formula). Receivers: planes x, y, z, world position; a
+ * non-finite one flags its row and reads as 0.
+ *
+ * Landing: p - position = (x, y, d) along (right, down, forward); inside
+ * when d > 0 and the pixel (floor(u W), floor(v H)) of u = 1/2 + x / (2 tan
+ * d), v likewise, lies in the map (MapCamera, penumbra/layered_depth_map.h).
+ * A point outside a map sees no caster there: no estimate, no occlusion.
+ * The bias is bias_texels texel footprints at the point's depth d,
+ * bias_texels 2 tan(fov/2) d / W.
+ */
+#ifndef PENUMBRA_PISMO_H
+#define PENUMBRA_PISMO_H
+
+typedef struct {
+    pn_float x, y, z;
+} PismoPoint;
+
+/* Where a point lands in one map. */
+typedef struct {
+    pn_int pixel;   /* index into the offsets (clamped into the map: valid to gather) */
+    pn_float limit; /* the point's depth minus the bias there */
+    pn_mask inside;
+} PismoLanding;
+
+PN_FN PismoLanding pismo_land(PN_GLOBAL const float* cameras, PismoParams p, int map, PismoPoint q)
+{
+    PN_GLOBAL const float* c = cameras + PN_PISMO_CAMERA_FLOATS * map;
+    const pn_float lx = q.x - c[0], ly = q.y - c[1], lz = q.z - c[2];
+    const pn_float x = lx * c[3] + ly * c[4] + lz * c[5];
+    const pn_float y = lx * c[6] + ly * c[7] + lz * c[8];
+    const pn_float d = lx * c[9] + ly * c[10] + lz * c[11];
+    const pn_float col = pn_floor((0.5f + x / (d * c[12])) * (float)p.map_width);
+    const pn_float row = pn_floor((0.5f + y / (d * c[12])) * (float)p.map_height);
+    PismoLanding at;
+    /* Every comparison with a NaN (d = 0) is false: such a point is outside. */
+    at.inside = pn_and(pn_and(d > 0.0f, pn_and(col >= 0.0f, col < (float)p.map_width)),
+                       pn_and(row >= 0.0f, row < (float)p.map_height));
+    const pn_int ix = pn_to_int(pn_select(at.inside, col, 0.0f));
+    const pn_int iy = pn_to_int(pn_select(at.inside, row, 0.0f));
+    at.pixel = ix + iy * p.map_width + map * (p.map_width * p.map_height);
+    const pn_float depth = pn_sqrt(lx * lx + ly * ly + lz * lz);
+    at.limit = depth - p.bias_texels * (c[13] * depth);
+    return at;
+}
+
+PN_FN PismoPoint pismo_receiver(PN_GLOBAL const float* receivers, PismoParams p, int y, PN_GLOBAL int* bad_rows,
+                                int x)
+{
+    PismoPoint r;
+    r.x = load_checked_plane(receivers, p.receivers, 0, x, y, bad_rows);
+    r.y = load_checked_plane(receivers, p.receivers, 1, x, y, bad_rows);
+    r.z = load_checked_plane(receivers, p.receivers, 2, x, y, bad_rows);
+    return r;
+}
+
+/* The farthest layer of a pixel nearer than `limit`, or -1: the layers are
+ * increasing, so the walk stops at the first one at or past it. */
+PN_FN pn_float pismo_nearest_occluder(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths, PismoParams p,
+                                      PismoLanding at)
+{
+    pn_uint first, second;
+    pn_ugather_pair(offsets, at.pixel, &first, &second);
+    pn_int i = pn_uint_to_index(first);
+    const pn_int end = pn_uint_to_index(second);
+    pn_float nearest = -1.0f;
+    pn_mask active = pn_and(at.inside, pn_iless(i, end));
+    while (pn_any(active)) {
+        const pn_float d = pn_gather(depths, pn_imin(i, p.last_depth));
+        active = pn_and(active, d < at.limit);
+        nearest = pn_select(active, d, nearest);
+        i = pn_iselect(active, i + 1, i);
+        active = pn_and(active, pn_iless(i, end));
+    }
+    return nearest;
+}
+
+PN_KERNEL void pismo_estimates(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
+                               PN_GLOBAL const float* cameras, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
+                               PN_GLOBAL int* bad_rows, const PismoParams p, PN_PIXEL_ARGS)
+{
+    PN_PIXEL_BEGIN(p.out.width, p.out.height);
+    const int rows = p.receivers.height;
+    const PismoPoint q = pismo_receiver(receivers, p, pn_y % rows, bad_rows, pn_x);
+    const PismoLanding at = pismo_land(cameras, p, pn_y / rows, q);
+    pn_store(out, p.out, pn_x, pn_y, pismo_nearest_occluder(offsets, depths, p, at));
+}
+
+/* What a ray needs of one corner of its triangle, per receiver. */
+typedef struct {
+    int map;
+    float vx, vy, vz;  /* the vertex */
+    pn_float estimate; /* D_k, or -1 */
+    pn_float limit;    /* |P - V_k| minus the bias */
+    pn_mask p_inside;  /* P lands in map k */
+} PismoCorner;
+
+PN_FN PismoCorner pismo_corner(PN_GLOBAL const float* cameras, PN_GLOBAL const float* estimates, PismoParams p,
+                               int map, PismoPoint q, int x, int y)
+{
+    PismoCorner k;
+    PN_GLOBAL const float* c = cameras + PN_PISMO_CAMERA_FLOATS * map;
+    k.map = map;
+    k.vx = c[0];
+    k.vy = c[1];
+    k.vz = c[2];
+    k.estimate = pn_load(estimates, p.estimates, x, map * p.receivers.height + y);
+    const PismoLanding at = pismo_land(cameras, p, map, q);
+    k.limit = at.limit;
+    k.p_inside = at.inside;
+    return k;
+}
+
+/* o_k: whether test map k holds, at o's pixel, a layer nearer than P's limit
+ * there (its nearest layer is enough: any nearer layer implies it). */
+PN_FN pn_mask pismo_occludes(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
+                             PN_GLOBAL const float* cameras, PismoParams p, PismoCorner k, PismoPoint o)
+{
+    const PismoLanding at = pismo_land(cameras, p, k.map, o);
+    pn_uint first, second;
+    pn_ugather_pair(offsets, at.pixel, &first, &second);
+    const pn_int begin = pn_uint_to_index(first);
+    const pn_float front = pn_gather(depths, pn_imin(begin, p.last_depth));
+    const pn_mask holds = pn_and(pn_and(at.inside, k.p_inside), pn_iless(begin, pn_uint_to_index(second)));
+    return pn_and(holds, front < k.limit);
+}
+
+/* The lit share of one ray, sum of w_k (1 - o_k), weights w (uniform: the
+ * pattern is the same for every receiver, so L_i is too). */
+PN_FN pn_float pismo_ray_light(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
+                                   PN_GLOBAL const float* cameras, PismoParams p, const PismoCorner* k,
+                                   PN_GLOBAL const float* w, PismoPoint q)
+{
+    const float lx = w[0] * k[0].vx + w[1] * k[1].vx + w[2] * k[2].vx;
+    const float ly = w[0] * k[0].vy + w[1] * k[1].vy + w[2] * k[2].vy;
+    const float lz = w[0] * k[0].vz + w[1] * k[1].vz + w[2] * k[2].vz;
+    pn_float distance = 0.0f, weight = 0.0f;
+    for (int j = 0; j < 3; ++j) {
+        const pn_mask has = k[j].estimate > 0.0f;
+        distance = distance + pn_select(has, w[j] * k[j].estimate, 0.0f);
+        weight = weight + pn_select(has, w[j], 0.0f);
+    }
+    const pn_float tx = q.x - lx, ty = q.y - ly, tz = q.z - lz;
+    const pn_float along = distance / weight / pn_sqrt(tx * tx + ty * ty + tz * tz);
+    const pn_mask estimated = weight > 0.0f;
+    PismoPoint o;
+    o.x = pn_select(estimated, lx + tx * along, q.x);
+    o.y = pn_select(estimated, ly + ty * along, q.y);
+    o.z = pn_select(estimated, lz + tz * along, q.z);
+    pn_float lit = 0.0f;
+    for (int j = 0; j < 3; ++j)
+        lit = lit + pn_select(pismo_occludes(offsets, depths, cameras, p, k[j], o), 0.0f, w[j]);
+    return lit;
+}
+
+PN_KERNEL void pismo_visibility(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
+                                PN_GLOBAL const float* cameras, PN_GLOBAL const uint* triangles,
+                                PN_GLOBAL const float* rays, PN_GLOBAL const float* estimates,
+                                PN_GLOBAL const float* receivers, PN_GLOBAL float* out, PN_GLOBAL int* bad_rows,
+                                const PismoParams p, PN_PIXEL_ARGS)
+{
+    PN_PIXEL_BEGIN(p.out.width, p.out.height);
+    const PismoPoint q = pismo_receiver(receivers, p, pn_y, bad_rows, pn_x);
+    /* Lit rays over all rays, both summed in the same order, so that a point
+     * that every ray reaches is exactly 1 and one that none reaches exactly 0
+     * (the float32 weights sum to 1 only within a rounding). */
+    pn_float lit = 0.0f;
+    float total = 0.0f;
+    for (int t = 0; t < p.triangles; ++t) {
+        PN_GLOBAL const uint* tri = triangles + PN_PISMO_TRIANGLE_UINTS * t;
+        PismoCorner k[3];
+        for (int j = 0; j < 3; ++j) k[j] = pismo_corner(cameras, estimates, p, (int)tri[j], q, pn_x, pn_y);
+        for (int r = (int)tri[3]; r < (int)tri[4]; ++r) {
+            PN_GLOBAL const float* w = rays + PN_PISMO_RAY_FLOATS * r;
+            lit = lit + w[3] * pismo_ray_light(offsets, depths, cameras, p, k, w, q);
+            total = total + w[3] * (((0.0f + w[0]) + w[1]) + w[2]);
+        }
+    }
+    pn_store(out, p.out, pn_x, pn_y, pn_saturate(lit / total));
+}
+
+#endif
