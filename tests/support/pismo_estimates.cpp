@@ -21,9 +21,8 @@ PismoEstimates pismo_estimates(const reference::PismoMaps& maps, const reference
                 if (rx.mask.at(0, x, y) == 0) continue;
                 const reference::Vec3 p{rx.world_position.at(0, x, y), rx.world_position.at(1, x, y),
                                         rx.world_position.at(2, x, y)};
-                const std::uint64_t stream = std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x);
-                out.pismo.at(0, x, y) = float(pismo_visibility(layered, p, options, stream));
-                out.maximum_depth.at(0, x, y) = float(pismo_visibility(farthest, p, options, stream));
+                out.pismo.at(0, x, y) = float(pismo_visibility(layered, p, options));
+                out.maximum_depth.at(0, x, y) = float(pismo_visibility(farthest, p, options));
                 out.averaged.at(0, x, y) = float(averaged_hard_shadows(layered, p, options));
             }
     });

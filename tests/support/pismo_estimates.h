@@ -17,8 +17,8 @@ struct PismoEstimates {
     Image pismo, averaged, maximum_depth;  // one channel each, 0 outside rx.mask
 };
 
-// Every valid receiver (rx.mask), rows in parallel; receiver (x, y) draws its
-// rays from stream y * width + x, so the result does not depend on the threads.
+// Every valid receiver (rx.mask), rows in parallel, each over the kernel's ray
+// pattern (support/pismo_reference.h): the result does not depend on the threads.
 PismoEstimates pismo_estimates(const reference::PismoMaps& maps, const reference::Receivers& rx,
                                const PismoReferenceOptions& options);
 
