@@ -4,12 +4,11 @@
 // maps of 512^2), per backend: the SIMD ISAs on 1 and 2 threads
 // (tbb::task_arena), OpenCL on PoCL's own threads, in one run so that every
 // comparison is a ratio of the same run; and the time to build the maps
-// (the tracer's layered maps, then PismoMaps: the bled copies), on 2 threads.
+// (the tracer's layered maps, then PismoMaps: the bled copies, packed), on 2 threads.
 // docs/pismo.md, "The kernel", has the command and the figures. The scalar
 // binding is the oracle, not a schedule: it is left out.
 //
-// Case names: pismo/backend:B/level:L/size:512/threads:T, pismo_pack/level:L/size:512 (the
-// copy into the kernel's arrays each call makes), pismo_build/level:L/size:512.
+// Case names: pismo/backend:B/level:L/size:512/threads:T, pismo_build/level:L/size:512.
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
 
@@ -17,7 +16,6 @@
 #include <string>
 
 #include "bench_inputs.h"
-#include "host/src/pismo_pack.h"
 #include "host/src/pismo_rays.h"
 #include "kernels/params.h"
 #include "penumbra/pismo.h"
@@ -79,16 +77,6 @@ void shade(benchmark::State& state, const std::string& backend, int threads, int
                                                   benchmark::Counter::kIsRate);
 }
 
-// The copy of every map into the kernel's arrays that each pismo_shade call makes.
-void pack(benchmark::State& state, int level)
-{
-    const PismoMaps& m = maps(level);
-    for (auto _ : state) {
-        benchmark::DoNotOptimize(detail::pack_layers(m.test_maps()));
-        benchmark::DoNotOptimize(detail::pack_layers(m.bled_maps()));
-    }
-}
-
 void build_maps(benchmark::State& state, int level)
 {
     for (auto _ : state) benchmark::DoNotOptimize(build(level));
@@ -109,9 +97,6 @@ void build_maps(benchmark::State& state, int level)
                 })->UseRealTime()->Unit(benchmark::kMillisecond);
             }
         }
-        benchmark::RegisterBenchmark(("pismo_pack" + suffix).c_str(), [=](benchmark::State& st) {
-            pack(st, level);
-        })->UseRealTime()->Unit(benchmark::kMillisecond);
         benchmark::RegisterBenchmark(("pismo_build" + suffix).c_str(), [=](benchmark::State& st) {
             build_maps(st, level);
         })->UseRealTime()->Unit(benchmark::kMillisecond)->Iterations(1);

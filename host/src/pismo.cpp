@@ -94,21 +94,19 @@ Image receiver_rows(const Image& receivers, int y0, int rows)
     return chunk;
 }
 
-// What the two passes share: the packed maps and the ray table.
+// What the two passes share: the maps, the ray table and the Params.
 struct Prepared {
-    detail::PismoLayers test, bled;
-    std::vector<float> cameras;
+    const detail::PismoArrays& maps;
     detail::PismoRayTable rays;
     PismoParams params{};
 };
 
 Prepared prepare(const PismoMaps& maps, detail::PismoRayTable rays, float bias_texels)
 {
-    Prepared s{detail::pack_layers(maps.test_maps()), detail::pack_layers(maps.bled_maps()),
-               detail::pack_cameras(maps.test_maps()), std::move(rays), PismoParams{}};
-    s.params.map_width = maps.test_maps().front().width();
-    s.params.map_height = maps.test_maps().front().height();
-    s.params.maps = int(maps.test_maps().size());
+    Prepared s{*maps.arrays(), std::move(rays), PismoParams{}};
+    s.params.map_width = s.maps.width;
+    s.params.map_height = s.maps.height;
+    s.params.maps = int(maps.vertices().size());
     s.params.triangles = int(s.rays.triangles.size() / PN_PISMO_TRIANGLE_UINTS);
     s.params.bias_texels = bias_texels;
     return s;
@@ -121,17 +119,19 @@ void shade_chunk(detail::BackendImpl& backend, const Prepared& s, const Image& c
     PismoParams p = s.params;
     p.receivers = detail::dims_of(chunk);
     p.out = detail::dims_of(estimates);
-    p.last_depth = std::max(s.bled.depth_count - 1, 0);
+    const detail::PismoLayers& bled = s.maps.bled;
+    p.last_depth = int(std::max<std::size_t>(bled.depth_count, 1) - 1);
     detail::receiver_lookup<detail::KernelId::pismo_estimates>(
-        backend, detail::LookupSource({std::span(s.bled.offsets), std::span(s.bled.depths), std::span(s.cameras)}),
+        backend, detail::LookupSource({std::span(bled.offsets), std::span(bled.depths), std::span(s.maps.cameras)}),
         chunk, p, estimates, bad_rows);
     p.out = detail::dims_of(shaded);
     p.estimates = detail::dims_of(estimates);
-    p.last_depth = std::max(s.test.depth_count - 1, 0);
+    const detail::PismoLayers& test = s.maps.test;
+    p.last_depth = int(std::max<std::size_t>(test.depth_count, 1) - 1);
     const std::span<const float> estimate_values(estimates.plane(0), estimates.plane_pitch());
     detail::receiver_lookup<detail::KernelId::pismo_visibility>(
         backend,
-        detail::LookupSource({std::span(s.test.offsets), std::span(s.test.depths), std::span(s.cameras),
+        detail::LookupSource({std::span(test.offsets), std::span(test.depths), std::span(s.maps.cameras),
                               std::span(s.rays.triangles), std::span(s.rays.rays), estimate_values}),
         chunk, p, shaded, bad_rows);
 }
@@ -144,22 +144,53 @@ PismoMaps::PismoMaps(std::vector<std::array<double, 3>> vertices, std::vector<st
 {
     check_mesh(vertices_, triangles_);
     check_maps(vertices_, maps);
-    if (depths == PismoDepths::MaximumDepth)
-        for (const LayeredDepthMap& m : maps) test_.push_back(maximum_depth_map(m));
-    else
-        test_ = maps;
-    for (const LayeredDepthMap& m : test_) bled_.push_back(bleed_empty_pixels(m));
-    std::size_t bled_depths = 0;
-    for (const LayeredDepthMap& m : bled_) bled_depths += m.depths().size();
-    require_maps(bled_depths <= kMaxIndex, "the bled maps hold " + std::to_string(bled_depths) +
-                                               " depths; the kernel indexes fewer than 2^31: use smaller maps");
+    auto arrays = std::make_shared<detail::PismoArrays>();
+    arrays->width = maps.front().width();
+    arrays->height = maps.front().height();
+    // One map at a time, so that no more than one derived map is alive beside the arrays.
+    for (const LayeredDepthMap& m : maps) {
+        const LayeredDepthMap deepest = depths == PismoDepths::MaximumDepth ? maximum_depth_map(m) : LayeredDepthMap();
+        const LayeredDepthMap& test = depths == PismoDepths::MaximumDepth ? deepest : m;
+        const LayeredDepthMap bled = bleed_empty_pixels(test);
+        require_maps(arrays->bled.depths.size() + bled.depths().size() <= kMaxIndex,
+                     "the bled maps hold more than 2^31 depths, which the kernel cannot index: use smaller maps");
+        detail::append_layers(arrays->test, test);
+        detail::append_layers(arrays->bled, bled);
+        detail::append_camera(*arrays, test);
+    }
+    detail::close_layers(arrays->test);
+    detail::close_layers(arrays->bled);
+    arrays_ = std::move(arrays);
+}
+
+namespace {
+
+std::vector<LayeredDepthMap> unpack_all(const detail::PismoArrays* arrays, detail::PismoLayers detail::PismoArrays::*set,
+                                        std::size_t count)
+{
+    std::vector<LayeredDepthMap> out;
+    for (std::size_t j = 0; arrays && j < count; ++j) out.push_back(detail::unpack_map(*arrays, arrays->*set, int(j)));
+    return out;
+}
+
+}  // namespace
+
+std::vector<LayeredDepthMap> PismoMaps::test_maps() const
+{
+    return unpack_all(arrays_.get(), &detail::PismoArrays::test, vertices_.size());
+}
+
+std::vector<LayeredDepthMap> PismoMaps::bled_maps() const
+{
+    return unpack_all(arrays_.get(), &detail::PismoArrays::bled, vertices_.size());
 }
 
 std::size_t PismoMaps::bytes() const noexcept
 {
+    if (!arrays_) return 0;
     std::size_t total = 0;
-    for (const auto* set : {&test_, &bled_})
-        for (const LayeredDepthMap& m : *set) total += m.bytes();
+    for (const auto* layers : {&arrays_->test, &arrays_->bled})
+        total += 4 * (layers->offsets.size() + layers->depths.size());
     return total;
 }
 

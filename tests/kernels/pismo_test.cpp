@@ -219,8 +219,12 @@ PN_BACKEND_TEST(Pismo, ABlockerPlaneParallelToTheLightMeetsTheClosedForm)
             const double d = got.at(0, x, y) - want;
             sum += d * d;
             EXPECT_NEAR(got.at(0, x, y), want, 0.03) << "x = " << px << " on " << backend;
-            if (px > 1.3) EXPECT_EQ(got.at(0, x, y), 1.0f) << "outside the shadow, x = " << px;
-            if (px < -1.3) EXPECT_EQ(got.at(0, x, y), 0.0f) << "under the blocker, x = " << px;
+            if (px > 1.3) {
+                EXPECT_EQ(got.at(0, x, y), 1.0f) << "outside the shadow, x = " << px;
+            }
+            if (px < -1.3) {
+                EXPECT_EQ(got.at(0, x, y), 0.0f) << "under the blocker, x = " << px;
+            }
         }
     EXPECT_LT(std::sqrt(sum / (2 * n)), 0.01) << backend;
 }
@@ -280,6 +284,34 @@ TEST(PismoRays, StratifyEachTriangleByItsShareOfTheArea)
     EXPECT_NEAR(total, 1.0, 1e-6);
     const auto small = detail::pismo_ray_table(v, t, 1);
     EXPECT_EQ(small.rays.size(), 3u * PN_PISMO_RAY_FLOATS) << "at least one ray through every triangle";
+}
+
+// PismoMaps holds its maps packed for the kernel; they come back as made.
+TEST(PismoMapsHeld, TestAndBledMapsComeBackAsMade)
+{
+    const Case& c = scene_case("contact", 0, 16);
+    for (PismoDepths depths : {PismoDepths::Layered, PismoDepths::MaximumDepth}) {
+        const PismoMaps maps = library_maps(c.maps, depths);
+        const std::vector<LayeredDepthMap> test = maps.test_maps(), bled = maps.bled_maps();
+        ASSERT_EQ(test.size(), c.maps.maps.size());
+        ASSERT_EQ(bled.size(), c.maps.maps.size());
+        std::size_t bytes = 0;
+        for (std::size_t j = 0; j < test.size(); ++j) {
+            const LayeredDepthMap made =
+                depths == PismoDepths::Layered ? c.maps.maps[j] : maximum_depth_map(c.maps.maps[j]);
+            const LayeredDepthMap made_bled = bleed_empty_pixels(made);
+            EXPECT_EQ(test[j].offsets(), made.offsets()) << j;
+            EXPECT_EQ(test[j].depths(), made.depths()) << j;
+            EXPECT_EQ(bled[j].offsets(), made_bled.offsets()) << j;
+            EXPECT_EQ(bled[j].depths(), made_bled.depths()) << j;
+            EXPECT_EQ(test[j].camera().position, made.camera().position) << j;
+            bytes += made.bytes() + made_bled.bytes();
+        }
+        // One end entry per set instead of one per map.
+        EXPECT_EQ(maps.bytes(), bytes - 2 * 4 * (test.size() - 1));
+    }
+    EXPECT_TRUE(PismoMaps().test_maps().empty());
+    EXPECT_EQ(PismoMaps().bytes(), 0u);
 }
 
 class PismoBadInput : public ::testing::Test {

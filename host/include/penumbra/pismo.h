@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "penumbra/context.h"
@@ -21,6 +22,10 @@
 
 namespace penumbra {
 
+namespace detail {
+struct PismoArrays;  // host/src/pismo_pack.h
+}
+
 // Which depths the shadow-ray test reads: every layer of the layered maps,
 // or the single-channel maximum-depth variant (maximum_depth_map), which the
 // source says is accurate only outside the casters' convex hull.
@@ -28,7 +33,8 @@ enum class PismoDepths { Layered, MaximumDepth };
 
 // The light as a mesh and one map per vertex, ready for pismo_shade: the
 // maps the test reads (layered or maximum-depth) and their bled copies for the
-// first estimate (bleed_empty_pixels), both made once, here.
+// first estimate (bleed_empty_pixels), both made once, here, and held packed
+// as the kernel reads them, so that shading copies no map. Copies share them.
 class PismoMaps {
 public:
     PismoMaps() = default;  // no maps: pismo_shade refuses it
@@ -45,16 +51,19 @@ public:
 
     const std::vector<std::array<double, 3>>& vertices() const noexcept { return vertices_; }
     const std::vector<std::array<int, 3>>& triangles() const noexcept { return triangles_; }
-    const std::vector<LayeredDepthMap>& test_maps() const noexcept { return test_; }
-    const std::vector<LayeredDepthMap>& bled_maps() const noexcept { return bled_; }
+    // The maps as held, rebuilt from the packed arrays (a copy: for inspection).
+    std::vector<LayeredDepthMap> test_maps() const;
+    std::vector<LayeredDepthMap> bled_maps() const;
     PismoDepths depths() const noexcept { return depths_; }
     bool empty() const noexcept { return vertices_.empty(); }
-    std::size_t bytes() const noexcept;  // of the test and bled maps
+    std::size_t bytes() const noexcept;  // of the test and bled maps as held
+    // The library's own: the packed arrays (nullptr when empty).
+    const detail::PismoArrays* arrays() const noexcept { return arrays_.get(); }
 
 private:
     std::vector<std::array<double, 3>> vertices_;
     std::vector<std::array<int, 3>> triangles_;
-    std::vector<LayeredDepthMap> test_, bled_;
+    std::shared_ptr<const detail::PismoArrays> arrays_;
     PismoDepths depths_ = PismoDepths::Layered;
 };
 
