@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "input_limits.h"
 #include "penumbra/error.h"
@@ -32,6 +33,15 @@ PismoMapSet render_pismo_set(const reference::Scene& scene, const PismoBuild& bu
                              std::span<const reference::Vec3> region)
 {
     try {
+        // The maps' pixels are bounded as a reader bounds them (read_pismo_maps
+        // under --max-pixels): a set the tool writes, it reads back.
+        const std::uint64_t maps = reference::light_mesh(scene.light, build.level).vertices.size();
+        const std::uint64_t pixels = maps * std::uint64_t(build.maps.size) * std::uint64_t(build.maps.size);
+        if (build.maps.size >= 1 && pixels > exr_limits().max_pixels)
+            throw UsageError{"option --map-size: " + std::to_string(maps) + " maps of " +
+                             std::to_string(build.maps.size) + "^2 are " + std::to_string(pixels) +
+                             " pixels, over the limit of " + std::to_string(exr_limits().max_pixels) +
+                             "; give a smaller --map-size or --light-level, or raise --max-pixels"};
         return reference::render_pismo_map_set(scene, build.level, build.maps, region);
     } catch (const Error& e) {
         // The library names its parameter; the tool names its flag or the scene.

@@ -32,8 +32,10 @@ std::string pismo_map_options_help();
 PismoBuild pismo_build_from(const Args& args);
 
 // The scene's maps at `build`, cameras fitted to `region` when it is not
-// empty (else holding the light's frustum). A value out of range or a
-// scene without an area light is a UsageError naming the option or the scene.
+// empty (else holding the light's frustum). A value out of range, maps of
+// more pixels in all than --max-pixels (what read_pismo_maps would refuse)
+// or a scene without an area light is a UsageError naming the option or the
+// scene.
 PismoMapSet render_pismo_set(const reference::Scene& scene, const PismoBuild& build,
                              std::span<const reference::Vec3> region = {});
 

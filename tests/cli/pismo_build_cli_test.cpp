@@ -72,6 +72,8 @@ TEST_F(PismoBuildCli, RefusesBadOptionsWithOneLine)
                                  {"--map-size 0", "--map-size"},
                                  {"--layers 65", "--layers"},
                                  {"--receivers " + path("missing.exr"), "missing.exr"},
+                                 {"--light-level 5 --map-size 8192", "over the limit"},
+                                 {"--light-level 1 --map-size 8 --max-pixels 575", "raise --max-pixels"},
                              });
     expect_bad_input("pismo-build --scene hair --out " + out, "scene 'hair': a point light has no area");
     expect_bad_input("pismo-build --scene contact --out " + path("out.exr"), "--out");
