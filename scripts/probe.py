@@ -254,6 +254,7 @@ SDF_SHADE = ["sdf-shade", "--grid", "grid.pnsdf", "--receivers", "rx.exr", "--ou
 SDF_SCENE = ["sdf-shade", "--scene", "scene.json", "--receivers", "rx.exr", "--out", "out.exr", "--backend", "simd"]
 SDF_BAKE = ["sdf-bake", "--scene", "scene.json", "--out", "out.pnsdf", "--voxel", "0.5"]
 DSM_BUILD = ["dsm-build", "--scene", "scene.json", "--out", "out.exr", "--size", "16", "--samples", "4"]
+PISMO_BUILD = ["pismo-build", "--scene", "scene.json", "--out", "pismo", "--light-level", "0", "--map-size", "8"]
 RENDER = ["render-scene", "scene.json", "--map-size", "32", "--view-size", "16x12", "--samples", "4",
           "--shadow-map", "o_sm.exr", "--receivers", "o_rx.exr", "--truth", "o_gt.exr"]
 EXAMPLE = ["example", "--out", "exdir", "--map-size", "32"]
@@ -289,7 +290,7 @@ def patch_channel_name(path, old, new):
 FILE_INPUTS = [  # (command, option, inputs that must stay as they were)
     (SHADE, "--shadow-map"), (SHADE, "--receivers"), (BLUR, "--in"), (BLUR, "--guide"),
     (SDF_SHADE, "--grid"), (SDF_SHADE, "--receivers"), (SDF_SCENE, "--scene"), (SDF_BAKE, "--scene"),
-    (DSM_BUILD, "--scene"),
+    (DSM_BUILD, "--scene"), (PISMO_BUILD, "--scene"),
 ]
 
 
@@ -342,7 +343,8 @@ def setup_for(command):
 
 # The files each command reads: an output may not replace them.
 INPUTS_OF = {"shade": ("sm.exr", "rx.exr"), "blur": ("gt.exr", "sm_as_guide.exr"), "sdf-shade": ("grid.pnsdf", "rx.exr"),
-             "sdf-bake": ("scene.json",), "render-scene": ("scene.json",), "dsm-build": ("scene.json",)}
+             "sdf-bake": ("scene.json",), "render-scene": ("scene.json",), "dsm-build": ("scene.json",),
+             "pismo-build": ("scene.json",)}
 
 
 def cases_file_faults(quick):
@@ -466,6 +468,7 @@ VALUED = {
                               "--hit-epsilon", "--normal-offset", "--estimate"]),
     "sdf-bake": (SDF_BAKE, ["--voxel", "--margin"]),
     "dsm-build": (DSM_BUILD, ["--size", "--samples", "--tolerance", "--filter", "--seed"]),
+    "pismo-build": (PISMO_BUILD, ["--light-level", "--map-size", "--layers", "--receivers"]),
     "render-scene": (RENDER, ["--map-size", "--view-size", "--samples"]),
     "example": (EXAMPLE, ["--map-size"]),
     "demo": (DEMO, ["--method", "--scene", "--map-size", "--view-size", "--samples", "--frames", "--backend"]),

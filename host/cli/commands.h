@@ -16,6 +16,7 @@ int example_command(const std::vector<std::string>& args);
 int render_scene_command(const std::vector<std::string>& args);
 int demo_command(const std::vector<std::string>& args);
 int dsm_build_command(const std::vector<std::string>& args);
+int pismo_build_command(const std::vector<std::string>& args);
 
 // Shared by render-scene and demo.
 struct ViewSize {

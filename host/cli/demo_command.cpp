@@ -202,15 +202,21 @@ std::shared_ptr<const DeepShadowMap> render_deep_map(const reference::Scene& sce
     return std::make_shared<const DeepShadowMap>(reference::render_deep_shadow_map(scene, options));
 }
 
-std::vector<DemoFrame> render_frames(const reference::Scene& scene, const DemoOptions& o, bool deep,
+// What the wanted methods read beside the shadow map, rendered per frame.
+struct FrameInputs {
+    bool deep = false, pismo = false;
+};
+
+std::vector<DemoFrame> render_frames(const reference::Scene& scene, const DemoOptions& o, FrameInputs inputs,
                                      Progress& progress)
 {
     const int map = map_size_for(scene, o);
     std::vector<DemoFrame> frames;
     for (const reference::Scene& shifted : reference::flicker_frames(scene, o.frames, map, map)) {
         DemoFrame f{shifted, reference::render_shadow_map(shifted, map, map),
-                    reference::render_receivers(shifted, o.view.width, o.view.height), Image(), nullptr};
-        if (deep) f.deep_map = render_deep_map(shifted, map);
+                    reference::render_receivers(shifted, o.view.width, o.view.height), Image(), nullptr, nullptr};
+        if (inputs.deep) f.deep_map = render_deep_map(shifted, map);
+        if (inputs.pismo) f.pismo_maps = demo_pismo_maps(shifted, map, f.receivers);
         f.truth = cached_truth(shifted, f.receivers, o.strata, o.out / "cache");
         frames.push_back(std::move(f));
         progress.step(scene.name + ": ground truth");
@@ -248,9 +254,10 @@ double truth_noise(const DemoFrame& f0, const DemoOptions& o)
     return reference::rmse(f0.truth, finer, &scored);
 }
 
-SceneFrames render_scene_frames(const reference::Scene& scene, const DemoOptions& o, bool deep, Progress& progress)
+SceneFrames render_scene_frames(const reference::Scene& scene, const DemoOptions& o, FrameInputs inputs,
+                                Progress& progress)
 {
-    SceneFrames s{render_frames(scene, o, deep, progress), {}, 0.0};
+    SceneFrames s{render_frames(scene, o, inputs, progress), {}, 0.0};
     s.truth_noise = truth_noise(s.frames[0], o);
     s.timed = reference::render_receivers(s.frames[0].scene, o.frame.width, o.frame.height);
     return s;
@@ -453,9 +460,11 @@ void run_scene(Context& ctx, const DemoOptions& o, const reference::Scene& scene
 {
     const std::string& name = scene.name;
     const std::vector<DemoMethod> methods = wanted_methods(scene, o);
-    const bool deep = std::any_of(methods.begin(), methods.end(),
-                                  [](const DemoMethod& m) { return m.input == MethodInput::DeepMap; });
-    const SceneFrames scene_frames = render_scene_frames(scene, o, deep, progress);
+    const auto reads = [&](MethodInput input) {
+        return std::any_of(methods.begin(), methods.end(), [input](const DemoMethod& m) { return m.input == input; });
+    };
+    const SceneFrames scene_frames =
+        render_scene_frames(scene, o, {reads(MethodInput::DeepMap), reads(MethodInput::PismoMapSet)}, progress);
     const std::vector<DemoFrame>& frames = scene_frames.frames;
     results.truth_noise.emplace_back(name, scene_frames.truth_noise);
     progress.milestone(name + ": ground truth, " + std::to_string(o.frames) + " frames");

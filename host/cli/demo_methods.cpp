@@ -14,6 +14,7 @@
 #include "penumbra/bilateral.h"
 #include "penumbra/methods.h"
 #include "penumbra/reference/light_space.h"
+#include "penumbra/reference/pismo_maps.h"
 #include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
 
@@ -37,23 +38,38 @@ struct SweepPoint {
     MethodSettings settings;
 };
 
+// One setting of a method of the library's method table: its build step on
+// what the method reads from the frame (the shadow map, the deep map or the
+// Pismo maps), its shade step on the receivers' light-space (u, v, z) or, for
+// Pismo, their world positions.
+DemoSetting table_setting(const Method& method, std::string label, MethodSettings s)
+{
+    const auto prepare = [&method, s](Context& ctx, const DemoFrame& f) -> PreparedMap {
+        switch (method.input) {
+        case MethodInput::DeepMap: return method.prepare_deep(ctx, *f.deep_map, s);
+        case MethodInput::PismoMapSet: return method.prepare_pismo(ctx, *f.pismo_maps, s);
+        default: return method.prepare(ctx, f.shadow_map, s);
+        }
+    };
+    return {.label = std::move(label),
+            .prepare = [prepare](Context& ctx, const DemoFrame& f) -> DemoPrepared {
+                return std::make_shared<const PreparedMap>(prepare(ctx, f));
+            },
+            .shade = [&method, s](Context& ctx, const DemoFrame&, const reference::Receivers& rx,
+                                  const DemoPrepared& prepared) {
+                const Image& receivers = method.input == MethodInput::PismoMapSet ? rx.world_position : rx.light_uvz;
+                Image out(receivers.width(), receivers.height(), 1);
+                method.shade(ctx, *std::static_pointer_cast<const PreparedMap>(prepared), receivers, s, out);
+                return out;
+            }};
+}
+
 // A method of the library's method table at the settings of `sweep`.
-DemoMethod table_method(const char* name, const std::vector<SweepPoint>& sweep)
+DemoMethod table_method(const char* name, const std::vector<SweepPoint>& sweep, int preview = kMiddleSetting)
 {
     const Method& method = find_method(name);
-    DemoMethod m{.name = method.name, .settings = {}, .preview_setting = kMiddleSetting};
-    for (const SweepPoint& point : sweep)
-        m.settings.push_back(
-            {.label = point.label,
-             .prepare = [&method, s = point.settings](Context& ctx, const DemoFrame& f) -> DemoPrepared {
-                 return std::make_shared<const PreparedMap>(method.prepare(ctx, f.shadow_map, s));
-             },
-             .shade = [&method, s = point.settings](Context& ctx, const DemoFrame&, const reference::Receivers& rx,
-                                                    const DemoPrepared& prepared) {
-                 Image out(rx.light_uvz.width(), rx.light_uvz.height(), 1);
-                 method.shade(ctx, *std::static_pointer_cast<const PreparedMap>(prepared), rx.light_uvz, s, out);
-                 return out;
-             }});
+    DemoMethod m{.name = method.name, .settings = {}, .preview_setting = preview, .input = method.input};
+    for (const SweepPoint& point : sweep) m.settings.push_back(table_setting(method, point.label, point.settings));
     return m;
 }
 
@@ -294,36 +310,54 @@ DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vecto
 // lookup's default depth bias.
 DemoMethod deep_method()
 {
-    const Method& method = find_method("dsm");
-    DemoMethod m{.name = method.name, .settings = {}, .preview_setting = kFirstSetting, .input = method.input};
     struct Point {
         const char* label;
         DeepFilter filter;
         int radius;
     };
+    std::vector<SweepPoint> sweep;
     for (Point point : {Point{"tent r=0", DeepFilter::Tent, 0}, Point{"tent r=1", DeepFilter::Tent, 1},
                         Point{"box r=1", DeepFilter::Box, 1}}) {
         MethodSettings s;
         s.deep_filter = point.filter;
         s.radius = point.radius;
-        m.settings.push_back(
-            {.label = point.label,
-             .prepare = [&method, s](Context& ctx, const DemoFrame& f) -> DemoPrepared {
-                 return std::make_shared<const PreparedMap>(method.prepare_deep(ctx, *f.deep_map, s));
-             },
-             .shade = [&method, s](Context& ctx, const DemoFrame&, const reference::Receivers& rx,
-                                   const DemoPrepared& prepared) {
-                 Image out(rx.light_uvz.width(), rx.light_uvz.height(), 1);
-                 method.shade(ctx, *std::static_pointer_cast<const PreparedMap>(prepared), rx.light_uvz, s, out);
-                 return out;
-             }});
+        sweep.push_back({point.label, s});
     }
-    return m;
+    return table_method("dsm", sweep, kFirstSetting);
+}
+
+// Pismo, by the method table's `pismo` and `pismo-maxdepth` entries, on the
+// frame's maps (demo_pismo_maps). The kernel casts n x n rays per triangle,
+// n = round(sqrt(rays x the triangle's share)): on the 32 triangles of a
+// rectangle at level 2, 32 and 128 rays are 1 and 2 x 2 per triangle (a
+// count between them rounds to one of the two). pismo sweeps both, the
+// variant, which is there to show its failure, takes the first.
+DemoMethod pismo_method(const char* name, const std::vector<int>& ray_counts)
+{
+    std::vector<SweepPoint> sweep;
+    for (int rays : ray_counts) {
+        MethodSettings s;
+        s.rays = rays;
+        sweep.push_back({std::to_string(rays) + " rays", s});
+    }
+    return table_method(name, sweep, kFirstSetting);
 }
 
 }  // namespace
 
 int demo_deep_map_size(int map_size) { return std::clamp(map_size / 2, 1, 512); }
+
+int demo_pismo_map_size(int map_size) { return std::clamp(map_size / 2, 64, 512); }
+
+std::shared_ptr<const PismoMapSet> demo_pismo_maps(const reference::Scene& scene, int map_size,
+                                                   const reference::Receivers& receivers)
+{
+    reference::LayeredMapOptions options;
+    options.size = demo_pismo_map_size(map_size);
+    const reference::Scene lit = soft_light_for(scene, map_size).apply(scene);
+    return std::make_shared<const PismoMapSet>(reference::render_pismo_map_set(
+        lit, kDemoPismoLevel, options, reference::receiver_region(receivers)));
+}
 
 Image run_setting(Context& context, const DemoSetting& setting, const DemoFrame& frame)
 {
@@ -359,7 +393,9 @@ std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size
             table_method("pcf-gauss", pcf_gauss_sweep()),
             pcf_disc,
             blurred_method(pcf_disc, "pcf-disc+blur", disc_few_taps),
-            deep_method()};
+            deep_method(),
+            pismo_method("pismo", {32, 128}),
+            pismo_method("pismo-maxdepth", {32})};
 }
 
 }  // namespace penumbra::cli

@@ -12,6 +12,7 @@
 #include "penumbra/deep_shadow_map.h"
 #include "penumbra/image.h"
 #include "penumbra/methods.h"
+#include "penumbra/pismo_files.h"
 #include "penumbra/reference/render.h"
 #include "penumbra/reference/scene.h"
 
@@ -25,6 +26,10 @@ struct DemoFrame {
     // The frame's deep shadow map, rendered (not timed, as the shadow map's
     // render is not) only when a wanted method reads one; null otherwise.
     std::shared_ptr<const DeepShadowMap> deep_map;
+    // The frame's Pismo maps (light mesh and layered maps), rendered (not
+    // timed, as the shadow map's render is not) only when a wanted method
+    // reads them; null otherwise.
+    std::shared_ptr<const PismoMapSet> pismo_maps;
 };
 
 // What a setting's per-map step made for its per-receiver step (a method's
@@ -57,6 +62,17 @@ struct DemoMethod {
 // tolerance and box filter of `penumbra dsm-build`.
 int demo_deep_map_size(int map_size);
 inline constexpr int kDemoDeepSamples = 16;
+
+// Pismo's maps in the demo: the light mesh at level 2 (25 maps on a
+// rectangle, 37 on a disk), each half the shadow map's side, at most 512 and
+// at least 64, cameras fitted to the frame's receivers (docs/pismo.md, "The
+// demo rows"). A point light (the deep scenes') is meshed as the soft
+// methods' one-texel square stand-in (demo_methods.cpp, SoftLight).
+inline constexpr int kDemoPismoLevel = 2;
+int demo_pismo_map_size(int map_size);
+// The frame's maps: of `scene`, or of its stand-in light under a point light.
+std::shared_ptr<const PismoMapSet> demo_pismo_maps(const reference::Scene& scene, int map_size,
+                                                   const reference::Receivers& receivers);
 
 // Every method of the library, its settings chosen for `scene` (light size
 // from the scene's geometry) and a map of `map_size` texels.

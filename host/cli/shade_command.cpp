@@ -1,8 +1,11 @@
 // penumbra shade: the file contract of issue 2.
 //   SM.exr  one float channel Z: light-space depth in [0, 1] per texel
 //           (or, for a method that reads a deep shadow map, DSM.exr: a deep
-//           OpenEXR file, penumbra/deep_exr.h)
+//           OpenEXR file, penumbra/deep_exr.h; for pismo, the maps rendered
+//           from --scene with cameras fitted to the receivers, or a directory
+//           from pismo-build, penumbra/pismo_files.h)
 //   RX.exr  float channels u, v, z: receivers' texture coordinates and depth
+//           (pismo: P.x, P.y, P.z, world positions, as render-scene writes them)
 //   OUT.exr one float channel Y: visibility in [0, 1] on the receivers' grid
 // Output is written atomically: a failed run leaves no partial file and an
 // existing OUT.exr untouched.
@@ -26,9 +29,17 @@
 #include "penumbra/exr_io.h"
 #include "penumbra/methods.h"
 #include "penumbra/output_files.h"
+#include "penumbra/pismo_files.h"
+#include "penumbra/reference/scene.h"
+#include "pismo_input.h"
+#include "scene_input.h"
 
 namespace penumbra::cli {
 namespace {
+
+// Pismo's maps are rendered from a scene (the reference tracer) when no
+// directory of maps is given; the flags that shape them go with the scene.
+constexpr const char* kSceneFlag = "--scene";
 
 std::string shade_help()
 {
@@ -36,8 +47,12 @@ std::string shade_help()
            " --shadow-map SM.exr --receivers RX.exr --out OUT.exr\n"
            "                      [--backend auto|simd|opencl|scalar] [method options]\n"
            "       penumbra shade --method dsm --deep-map DSM.exr --receivers RX.exr --out OUT.exr [--filter box|tent]\n"
+           "       penumbra shade --method pismo|pismo-maxdepth (--scene S | --pismo-maps DIR) --receivers RX.exr\n"
+           "                      --out OUT.exr [--rays R] [--light-level L] [--map-size N] [--layers K]\n"
            "  SM.exr: float channel Z, light depth in [0, 1]; DSM.exr: a deep OpenEXR file (dsm-build writes one);\n"
-           "  RX.exr: float channels u, v, z;\n"
+           "  RX.exr: float channels u, v, z (pismo: P.x, P.y, P.z, world positions);\n"
+           "  pismo renders its maps from --scene, cameras fitted to the receivers, or reads pismo-build's DIR:\n" +
+           pismo_map_options_help() +
            "  OUT.exr: float channel Y, visibility in [0, 1] on the receivers' grid.\n"
            "  Every method computes its own mathematics on the float32 depths (exact window sums, moments in\n"
            "  double): within 2e-4 (vsm, vssm, evsm*) / 1e-3 (msm*) of its float64 evaluation (docs/moments.md).\n"
@@ -48,7 +63,8 @@ std::string shade_help()
 
 std::set<std::string> shade_flags()
 {
-    std::set<std::string> flags = {"--method", "--receivers", "--out", "--backend"};
+    std::set<std::string> flags = {"--method", "--receivers", "--out", "--backend", kSceneFlag};
+    flags.insert(kPismoMapFlags.begin(), kPismoMapFlags.end());
     for (const MethodInputInfo& i : method_inputs()) flags.insert(std::string("--") + i.flag);
     for (const MethodOption& o : method_options()) flags.insert(std::string("--") + o.name);
     return flags;
@@ -68,6 +84,28 @@ struct ShadeFiles {
     MethodInput input;
 };
 
+bool renders_pismo_maps(const Args& args, const Method& method)
+{
+    return method.input == MethodInput::PismoMapSet && !args.get("--pismo-maps");
+}
+
+// The flags only a method that renders its maps from a scene reads.
+void refuse_scene_flags(const Args& args, const Method& method)
+{
+    const bool rendering = renders_pismo_maps(args, method);
+    if (rendering && !args.get(kSceneFlag))
+        throw UsageError{std::string("option --scene or --pismo-maps is required: ") + method.name +
+                         " renders its maps from a scene, or reads a directory from pismo-build"};
+    if (method.input == MethodInput::PismoMapSet && !rendering && args.get(kSceneFlag))
+        throw UsageError{"option --scene: give --scene or --pismo-maps, not both"};
+    std::set<std::string> scene_flags = kPismoMapFlags;
+    scene_flags.insert(kSceneFlag);
+    for (const std::string& flag : scene_flags)
+        if (!rendering && args.get(flag))
+            throw UsageError{"option " + flag + ": only pismo and pismo-maxdepth read it, from a scene" +
+                             std::string(method.input == MethodInput::PismoMapSet ? " (not with --pismo-maps)" : "")};
+}
+
 // The method's input file: its flag is required, another input's refused.
 std::string input_path(const Args& args, const Method& method)
 {
@@ -76,6 +114,8 @@ std::string input_path(const Args& args, const Method& method)
         if (i.input != method.input && args.get(std::string("--") + i.flag))
             throw UsageError{"option --" + std::string(i.flag) + ": " + method.name + " reads a " + wanted.what +
                              ": give --" + wanted.flag};
+    refuse_scene_flags(args, method);
+    if (renders_pismo_maps(args, method)) return args.required(kSceneFlag);
     return args.required(std::string("--") + wanted.flag);
 }
 
@@ -94,7 +134,10 @@ std::string input_path(const Args& args, const Method& method)
     if (!e.pixel()) throw Error(e.category(), "shade", path + ": " + e.message());
     static const char* const kReceiverChannels[] = {"u", "v", "z", "dzdu", "dzdv"};
     const BadPixel& bad = *e.pixel();
-    const std::string where = path + ": channel " + (is_map ? "Z" : kReceiverChannels[bad.channel % 5]) +
+    const std::string channel = is_map                                     ? "Z"
+                                : files.input == MethodInput::PismoMapSet ? kWorldPositionChannels[bad.channel % 3]
+                                                                          : kReceiverChannels[bad.channel % 5];
+    const std::string where = path + ": channel " + channel +
                               " at pixel (" + std::to_string(bad.x) + ", " + std::to_string(bad.y) + ") is " +
                               std::to_string(bad.value);
     throw Error(ErrorCategory::InvalidData, "shade",
@@ -125,6 +168,22 @@ DeepShadowMap read_deep_map(const std::string& path)
     try {
         return read_deep_exr(path, exr_limits());
     } catch (const Error& e) {
+        throw Error(e.category(), "shade", e.message());
+    }
+}
+
+// Pismo's maps: pismo-build's directory, or rendered from the scene with the
+// cameras fitted to the receivers (docs/pismo.md: their texels then land on
+// what is shaded). The readers name the file; the line is the command's.
+PismoMapSet pismo_maps_for(const Args& args, const Method& method, const ShadeFiles& files)
+{
+    try {
+        if (!renders_pismo_maps(args, method)) return read_pismo_maps(files.map, exr_limits());
+        const PismoBuild build = pismo_build_from(args);
+        const reference::Scene scene = resolve_scene(files.map);
+        return render_pismo_set(scene, build, receiver_region_from(files.receivers, "shade"));
+    } catch (const Error& e) {
+        if (e.operation() == "shade" || !e.parameter().empty()) throw;
         throw Error(e.category(), "shade", e.message());
     }
 }
@@ -173,12 +232,14 @@ int shade_command(const std::vector<std::string>& argv)
         std::future<Context> starting = start_context(ContextOptions{backend, {}}, warm_up);
         const SetOnUnwind on_unwind{inputs_failed};
         const auto shade_from = [&](const auto& map) {  // a shadow map or a deep map, read first
-            const Image receivers = read_input(files.receivers, receiver_channels(settings), "receivers image");
+            const Image receivers = read_input(files.receivers, receiver_channels(*method, settings), "receivers image");
             Context context = start(starting);
             write_exr(out_path, method->run(context, map, receivers, settings), {"Y"});
         };
         if (method->input == MethodInput::DeepMap)
             shade_from(read_deep_map(files.map));
+        else if (method->input == MethodInput::PismoMapSet)
+            shade_from(pismo_maps_for(args, *method, files));
         else
             shade_from(read_input(files.map, {"Z"}, "shadow map"));
     } catch (const Error& e) {

@@ -35,15 +35,14 @@
 namespace penumbra {
 namespace {
 
-constexpr std::string_view kOperation = "read_deep_exr";
 constexpr std::string_view kAdvice = "; the file may be truncated or corrupt, re-create it";
 constexpr int kScanlineBand = 64;
 
 std::string quoted(const std::string& text) { return "'" + text + "'"; }
 
-[[noreturn]] void refuse(const std::string& path, const std::string& what)
+[[noreturn]] void refuse(const detail::DeepFileKind& kind, const std::string& path, const std::string& what)
 {
-    throw Error(ErrorCategory::Io, kOperation, quoted(path) + " " + what);
+    throw Error(ErrorCategory::Io, kind.operation, quoted(path) + " " + what);
 }
 
 // One chunk's pixels (relative to the data window) and the decoded bytes it declares.
@@ -57,7 +56,7 @@ struct DeepLayout {
     bool tiled = false;
     int width = 0, height = 0;
     std::uint64_t bytes_per_sample = 0;  // every channel of the file, as stored
-    bool has_zback = false, has_t = false;
+    bool has_zback = false, has_a = false, has_t = false;
     std::vector<ChunkClaim> chunks;
 };
 
@@ -66,12 +65,13 @@ bool is_deep(exr_storage_t storage)
     return storage == EXR_STORAGE_DEEP_SCANLINE || storage == EXR_STORAGE_DEEP_TILED;
 }
 
-// The channels a deep map needs, their types, and the bytes of one sample.
-void inspect_channels(const detail::CoreContext& core, const std::string& path, DeepLayout& layout)
+// The channels the kind of file needs, their types, and the bytes of one sample.
+void inspect_channels(const detail::CoreContext& core, const detail::DeepFileKind& kind, const std::string& path,
+                      DeepLayout& layout)
 {
     const exr_attr_chlist_t* channels = nullptr;
     core.check(exr_get_channels(core.get(), 0, &channels), "its channel list cannot be read");
-    bool has_z = false, has_a = false;
+    bool has_z = false;
     for (int c = 0; c < channels->num_channels; ++c) {
         const exr_attr_chlist_entry_t& e = channels->entries[c];
         layout.bytes_per_sample += e.pixel_type == EXR_PIXEL_HALF ? 2 : 4;
@@ -79,16 +79,17 @@ void inspect_channels(const detail::CoreContext& core, const std::string& path, 
         const bool ours = name == "Z" || name == "ZBack" || name == "A" || name == kDeepTransmittanceChannel;
         if (!ours) continue;
         if (e.x_sampling != 1 || e.y_sampling != 1)
-            refuse(path, "has a subsampled channel " + quoted(name) + "; a deep map's channels are full resolution");
+            refuse(kind, path, "has a subsampled channel " + quoted(name) + "; a deep map's channels are full resolution");
         if (e.pixel_type == EXR_PIXEL_UINT)
-            refuse(path, "stores channel " + quoted(name) + " as UINT; depths and opacities are FLOAT (or HALF)");
-        has_z |= name == "Z", has_a |= name == "A";
+            refuse(kind, path, "stores channel " + quoted(name) + " as UINT; depths and opacities are FLOAT (or HALF)");
+        has_z |= name == "Z", layout.has_a |= name == "A" && kind.needs_opacity;
         layout.has_zback |= name == "ZBack", layout.has_t |= name == kDeepTransmittanceChannel;
     }
-    if (!has_z || !has_a)
-        refuse(path, std::string("has no ") + (has_z ? "A" : "Z") +
-                         " channel; a deep shadow map needs Z (depth) and A (opacity) per sample, "
-                         "as OpenEXR's \"Interpreting Deep Pixels\" defines them");
+    if (!has_z || (kind.needs_opacity && !layout.has_a))
+        refuse(kind, path, std::string("has no ") + (has_z ? "A" : "Z") + " channel; " + std::string(kind.what) +
+                               (kind.needs_opacity ? " needs Z (depth) and A (opacity) per sample, "
+                                                     "as OpenEXR's \"Interpreting Deep Pixels\" defines them"
+                                                   : " needs Z (depth) per sample"));
 }
 
 // Every chunk's table entry, its decoded size bounded by its stored size.
@@ -107,22 +108,23 @@ void inspect_chunks(const detail::CoreContext& core, const exr_attr_box2i_t& win
     });
 }
 
-DeepLayout inspect_deep(const InputFile& file, const ExrReadLimits& limits)
+DeepLayout inspect_deep(const InputFile& file, const ExrReadLimits& limits, const detail::DeepFileKind& kind)
 {
     const std::string& path = file.path();
     char magic[4] = {};
     if (!file.read_at(0, magic, sizeof magic) || !Imf::isImfMagic(magic))
-        refuse(path, "is not an OpenEXR file (it lacks the EXR magic number)");
-    detail::check_attribute_sizes(file, kOperation);
+        refuse(kind, path, "is not an OpenEXR file (it lacks the EXR magic number)");
+    detail::check_attribute_sizes(file, kind.operation);
     detail::Reading reading{&file, {}, {}};
-    const detail::CoreContext core(reading, kOperation);
+    const detail::CoreContext core(reading, kind.operation);
     exr_storage_t storage{};
     exr_attr_box2i_t window{};
     exr_compression_t compression{};
     core.check(exr_get_storage(core.get(), 0, &storage), "its storage type cannot be read");
     if (!is_deep(storage))
-        refuse(path, "is a flat (not deep) image; a deep shadow map is a deep scanline or deep tiled OpenEXR "
-                     "file (penumbra dsm-build writes one)");
+        refuse(kind, path, "is a flat (not deep) image; " + std::string(kind.what) +
+                               " is a deep scanline or deep tiled OpenEXR file (" + std::string(kind.writer) +
+                               " writes one)");
     core.check(exr_get_data_window(core.get(), 0, &window), "its data window cannot be read");
     core.check(exr_get_compression(core.get(), 0, &compression), "its compression cannot be read");
     DeepLayout layout;
@@ -130,10 +132,10 @@ DeepLayout inspect_deep(const InputFile& file, const ExrReadLimits& limits)
     const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
     const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
     if (width <= 0 || height <= 0 || width > INT32_MAX || height > INT32_MAX)
-        refuse(path, "has an empty or impossible data window; re-export it with at least one pixel");
+        refuse(kind, path, "has an empty or impossible data window; re-export it with at least one pixel");
     layout.width = int(width), layout.height = int(height);
     detail::check_declared_sizes(core, window, limits, layout.tiled);
-    inspect_channels(core, path, layout);
+    inspect_channels(core, kind, path, layout);
     inspect_chunks(core, window, compression, layout);
     return layout;
 }
@@ -141,7 +143,7 @@ DeepLayout inspect_deep(const InputFile& file, const ExrReadLimits& limits)
 // Each chunk's declared decoded size must be exactly its samples' bytes: then
 // the counts (already bounded per chunk by its stored size) bound the arrays.
 std::uint64_t checked_sample_total(const DeepLayout& layout, const std::vector<unsigned>& counts,
-                                   const std::string& path)
+                                   const detail::DeepFileKind& kind, const std::string& path)
 {
     std::uint64_t total = 0;
     for (const ChunkClaim& c : layout.chunks) {
@@ -150,7 +152,7 @@ std::uint64_t checked_sample_total(const DeepLayout& layout, const std::vector<u
             for (int x = c.x0; x < std::min(layout.width, c.x0 + c.width); ++x)
                 samples += counts[std::size_t(y) * std::size_t(layout.width) + std::size_t(x)];
         if (samples * layout.bytes_per_sample != c.unpacked)
-            refuse(path, "is corrupt: the chunk at pixel (" + std::to_string(c.x0) + ", " + std::to_string(c.y0) +
+            refuse(kind, path, "is corrupt: the chunk at pixel (" + std::to_string(c.x0) + ", " + std::to_string(c.y0) +
                              ") counts " + std::to_string(samples) + " samples but declares " +
                              std::to_string(c.unpacked) + " bytes of them; re-create the file");
         total += samples;
@@ -168,10 +170,8 @@ public:
         else
             scanline_ = std::make_unique<Imf::DeepScanLineInputFile>(stream_);
     }
-    const Imath::Box2i& window() const
-    {
-        return tiled_ ? tiled_->header().dataWindow() : scanline_->header().dataWindow();
-    }
+    const Imf::Header& header() const { return tiled_ ? tiled_->header() : scanline_->header(); }
+    const Imath::Box2i& window() const { return header().dataWindow(); }
     int band_height() const { return tiled_ ? int(tiled_->tileYSize()) : kScanlineBand; }
 
     void read_counts(const Imf::DeepFrameBuffer& frame)
@@ -216,15 +216,20 @@ char* shifted(T* base, const Imath::Box2i& window, int y0, int width)
 
 }  // namespace
 
-DeepShadowMap read_deep_exr(const std::string& path, const ExrReadLimits& limits)
+namespace detail {
+
+DeepSamples read_deep_samples(const std::string& path, const ExrReadLimits& limits, const DeepFileKind& kind,
+                              const std::function<void(const Imf::Header&)>& header)
 {
-    const InputFile file = open_input_file(path, kOperation);
-    const DeepLayout layout = inspect_deep(file, limits);
+    const InputFile file = open_input_file(path, kind.operation);
+    const DeepLayout layout = inspect_deep(file, limits, kind);
     const int width = layout.width, height = layout.height;
-    detail::DeepSamples samples;
-    detail::translating_exr_exceptions(kOperation, path, kAdvice, [&] {
-        detail::use_hardware_threads_for_exr();
+    DeepSamples samples;
+    samples.width = width, samples.height = height;
+    translating_exr_exceptions(kind.operation, path, kAdvice, [&] {
+        use_hardware_threads_for_exr();
         DeepReader reader(file, layout.tiled);
+        if (header) header(reader.header());
         const Imath::Box2i window = reader.window();
         samples.counts.assign(std::size_t(width) * std::size_t(height), 0);
         Imf::DeepFrameBuffer counts_frame;
@@ -232,7 +237,8 @@ DeepShadowMap read_deep_exr(const std::string& path, const ExrReadLimits& limits
                                      sizeof(unsigned), sizeof(unsigned) * std::size_t(width));
         counts_frame.insertSampleCountSlice(count_slice);
         reader.read_counts(counts_frame);
-        samples.allocate(checked_sample_total(layout, samples.counts, path), layout.has_zback, layout.has_t);
+        samples.allocate(checked_sample_total(layout, samples.counts, kind, path), layout.has_zback, layout.has_a,
+                         layout.has_t);
 
         const int band_rows = reader.band_height();
         std::array<std::vector<float*>, 4> pointers;
@@ -242,11 +248,11 @@ DeepShadowMap read_deep_exr(const std::string& path, const ExrReadLimits& limits
             frame.insertSampleCountSlice(count_slice);
             const std::size_t first = std::size_t(y0) * std::size_t(width), pixels = std::size_t(rows) * width;
             for (int c = 0; c < 4; ++c) {
-                if (samples.channel(c).empty()) continue;
+                if (!samples.has[c]) continue;  // not in the file (or, A, not read)
                 pointers[std::size_t(c)].resize(pixels);
                 for (std::size_t p = 0; p < pixels; ++p)
                     pointers[std::size_t(c)][p] = samples.channel(c).data() + samples.first[first + p];
-                frame.insert(detail::DeepSamples::kNames[c],
+                frame.insert(DeepSamples::kNames[c],
                              Imf::DeepSlice(Imf::FLOAT, shifted(pointers[std::size_t(c)].data(), window,
                                                                 window.min.y + y0, width),
                                             sizeof(float*), sizeof(float*) * std::size_t(width), sizeof(float)));
@@ -257,11 +263,21 @@ DeepShadowMap read_deep_exr(const std::string& path, const ExrReadLimits& limits
             // The arrays were sized by the counts checked; a file that changed
             // since (it is read twice) must not be read into them.
             if (!std::equal(counted.begin(), counted.end(), samples.counts.begin() + std::ptrdiff_t(first)))
-                refuse(path, "changed while it was read; read it again");
+                refuse(kind, path, "changed while it was read; read it again");
         }
         samples.origin_x = window.min.x, samples.origin_y = window.min.y;
     });
-    return detail::deep_map_from_samples(samples, width, height, path);
+    return samples;
+}
+
+}  // namespace detail
+
+DeepShadowMap read_deep_exr(const std::string& path, const ExrReadLimits& limits)
+{
+    static constexpr detail::DeepFileKind kDeepShadowMap{"read_deep_exr", "a deep shadow map", "penumbra dsm-build",
+                                                         true};
+    const detail::DeepSamples samples = detail::read_deep_samples(path, limits, kDeepShadowMap);
+    return detail::deep_map_from_samples(samples, samples.width, samples.height, path);
 }
 
 }  // namespace penumbra

@@ -102,13 +102,14 @@ private:
 
 }  // namespace
 
-void DeepSamples::allocate(std::uint64_t total, bool has_zback, bool has_t)
+void DeepSamples::allocate(std::uint64_t total, bool has_zback, bool has_a, bool has_t)
 {
     first.resize(counts.size());
     std::uint64_t at = 0;
     for (std::size_t p = 0; p < counts.size(); ++p) first[p] = at, at += counts[p];
+    has[kZ] = true, has[kZBack] = has_zback, has[kA] = has_a, has[kT] = has_t;
     z.assign(total, 0.0f);
-    a.assign(total, 0.0f);
+    if (has_a) a.assign(total, 0.0f);
     if (has_zback) zback.assign(total, 0.0f);
     if (has_t) t.assign(total, 0.0f);
 }

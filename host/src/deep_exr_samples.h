@@ -3,8 +3,12 @@
 // the mapping is penumbra/deep_exr.h's, the other direction deep_exr_write.cpp).
 #pragma once
 
+#include <OpenEXR/ImfHeader.h>
+
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "penumbra/deep_exr.h"
@@ -18,14 +22,33 @@ struct DeepSamples {
 
     std::vector<unsigned> counts;       // samples per pixel, row-major over the data window
     std::vector<std::uint64_t> first;   // per pixel, the index of its first sample
-    std::vector<float> z, zback, a, t;  // zback and t stay empty when the file lacks them
+    std::vector<float> z, zback, a, t;  // zback, a and t stay empty when the file lacks them (or a is not read)
     int origin_x = 0, origin_y = 0;     // the data window's top-left corner (file coordinates)
+    int width = 0, height = 0;          // the data window's size
+    bool has[4] = {};                   // channel(c) is read from the file (it may hold no sample)
 
     // Sizes the arrays for `total` samples (from counts) and fills `first`.
-    void allocate(std::uint64_t total, bool has_zback, bool has_t);
+    void allocate(std::uint64_t total, bool has_zback, bool has_a, bool has_t);
     std::vector<float>& channel(int c);
     const std::vector<float>& channel(int c) const;
 };
+
+// What a reader of deep files reads: its operation (its errors name it), what
+// such a file holds and which command writes one (for the errors), and
+// whether A is required and read (deep shadow maps) or not (layered depth
+// maps, penumbra/layered_exr.h: Z alone).
+struct DeepFileKind {
+    std::string_view operation, what, writer;
+    bool needs_opacity;
+};
+
+// Every sample of the file's channels Z, ZBack, A (when kind.needs_opacity)
+// and penumbra.T, after the checks of deep_exr_read.cpp's header comment:
+// nothing is allocated on the file's word alone. `header`, when given, sees
+// the file's header (its attributes) before any sample is read. Error(Io)
+// naming the file and kind.operation.
+DeepSamples read_deep_samples(const std::string& path, const ExrReadLimits& limits, const DeepFileKind& kind,
+                              const std::function<void(const Imf::Header&)>& header = {});
 
 // The map the samples describe. Error(InvalidData) naming `path`, the pixel (file
 // coordinates) and the sample for a bad value (penumbra/deep_exr.h lists them).

@@ -244,6 +244,8 @@ const std::vector<MethodOption>& method_options()
         {"sigma", "S", "the grid's Gaussian standard deviation, texels", "1", &kPcfSigmaRange, false,
          set_float<&S::sigma, kPcfSigmaRange>},
         {"taps", "N", "taps of the Vogel disc", "16", &kPcfTapsRange, false, set_int<&S::taps, kPcfTapsRange>},
+        {"rays", "R", "shadow rays per receiver, stratified over the light mesh's triangles by area", "64",
+         &kPismoRaysRange, false, set_int<&S::rays, kPismoRaysRange>},
         {"disc-radius", "R", "the disc's radius, texels", "2.5", &kPcfDiscRadiusRange, false,
          set_float<&S::disc_radius, kPcfDiscRadiusRange>},
         {"rotation", "tile|none", "the disc rotated per receiver from Toy Story 3's 4x4 tile, or not (bands)",

@@ -3,6 +3,8 @@
 // parsing and help are in method_options.cpp.
 #include "penumbra/methods.h"
 
+#include <algorithm>
+
 #include "penumbra/error.h"
 #include "visibility_output.h"
 
@@ -164,6 +166,37 @@ void shade_dsm(Context& context, const PreparedMap& prepared, const Image& recei
     deep_lookup(context, prepared.deep_map(), receivers, options, out);
 }
 
+// Pismo: the build step bleeds the stored maps (and derives the maximum-depth
+// variant); the shade step casts the rays (penumbra/pismo.h).
+template <PismoDepths Depths>
+PreparedMap prepare_pismo(Context&, const PismoMapSet& set, const MethodSettings&)
+{
+    return PreparedMap(set, PismoMaps(set.vertices, set.triangles, set.maps, Depths));
+}
+
+void shade_pismo(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
+                 Image& out)
+{
+    PismoOptions options;
+    options.rays = s.rays;
+    pismo_shade(context, prepared.table<PismoMaps>(), receivers, options, out);
+}
+
+// The smallest set the shadow-ray test takes, for the warm-up: one triangle
+// of 1 x 1 maps, each camera at its vertex looking along +z.
+PismoMapSet one_triangle_set()
+{
+    PismoMapSet set;
+    set.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    set.triangles = {{0, 1, 2}};
+    for (const auto& v : set.vertices) {
+        MapCamera camera;
+        camera.position = v;
+        set.maps.emplace_back(1, 1, camera, std::vector<std::uint32_t>{0, 1}, std::vector<float>{1.0f});
+    }
+    return set;
+}
+
 void require_input(const Method& m, MethodInput given)
 {
     if (m.input == given) return;
@@ -178,6 +211,7 @@ const std::vector<MethodInputInfo>& method_inputs()
     static const std::vector<MethodInputInfo> inputs = {
         {MethodInput::ShadowMap, "depth", "shadow-map", "shadow map"},
         {MethodInput::DeepMap, "deep-map", "deep-map", "deep shadow map"},
+        {MethodInput::PismoMapSet, "maps", "pismo-maps", "set of Pismo maps"},
     };
     return inputs;
 }
@@ -198,6 +232,12 @@ std::vector<std::string> receiver_channels(const MethodSettings& s)
     if (reads_plane && s.derivatives == DerivativeSource::Channels)
         return {"u", "v", "z", "dzdu", "dzdv"};
     return {"u", "v", "z"};
+}
+
+std::vector<std::string> receiver_channels(const Method& method, const MethodSettings& s)
+{
+    if (method.input == MethodInput::PismoMapSet) return {"P.x", "P.y", "P.z"};
+    return receiver_channels(s);
 }
 
 PreparedMap prepare_map(Context&, const Image& map, const MethodSettings&) { return PreparedMap(map); }
@@ -242,9 +282,23 @@ void Method::run(Context& context, const ImageView& map, const ImageView& receiv
     shade_view(context, prepare_view(context, map, settings), receivers, settings, out);
 }
 
+Image Method::run(Context& context, const PismoMapSet& set, const Image& receivers,
+                  const MethodSettings& settings) const
+{
+    require_input(*this, MethodInput::PismoMapSet);
+    const PreparedMap prepared = prepare_pismo(context, set, settings);
+    return detail::visibility_output(receivers, [&](Image& out) { shade(context, prepared, receivers, settings, out); });
+}
+
 void Method::warm_up(Context& context, const MethodSettings& settings) const
 {
     if (context.backend() != Backend::OpenCL) return;
+    if (input == MethodInput::PismoMapSet) {
+        Image receivers(1, 1, 3);
+        for (int c = 0; c < 3; ++c) receivers.fill(c, c < 2 ? 0.2f : 2.0f);  // in front of every map
+        (void)run(context, one_triangle_set(), receivers, settings);
+        return;
+    }
     Image receivers(1, 1, int(receiver_channels(settings).size()));
     for (int c = 0; c < receivers.channels(); ++c) receivers.fill(c, c < 3 ? 0.5f : 0.0f);  // u, v, z; dzdu, dzdv
     if (input == MethodInput::DeepMap) {
@@ -292,6 +346,10 @@ const std::vector<Method>& methods()
          prepare_map, shade_burley},
         {"dsm", "deep shadow maps: filtered lookup of per-pixel transmittance functions (Lokovic & Veach 2000)",
          {"radius", "depth-bias", "filter", "search"}, nullptr, shade_dsm, MethodInput::DeepMap, prepare_deep_map},
+        {"pismo", "Pismo: area light from layered depth maps at a light mesh's vertices, parallax-interpolated (Neulander)",
+         {"rays"}, nullptr, shade_pismo, MethodInput::PismoMapSet, nullptr, prepare_pismo<PismoDepths::Layered>},
+        {"pismo-maxdepth", "Pismo on single-channel maximum-depth maps: right only outside the casters' hull",
+         {"rays"}, nullptr, shade_pismo, MethodInput::PismoMapSet, nullptr, prepare_pismo<PismoDepths::MaximumDepth>},
     };
     return table;
 }
@@ -321,7 +379,7 @@ std::string methods_help()
     std::string text;
     for (const Method& m : methods()) {
         std::string line = "  " + std::string(m.name);
-        line.resize(13, ' ');
+        line.resize(std::max<std::size_t>(13, line.size() + 1), ' ');  // a long name keeps a space
         text += line + m.summary + "\n";
     }
     return text;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -97,6 +98,24 @@ void trace_layers(const PreparedScene& casters, const Ray& ray, const LayeredMap
     }
 }
 
+// The camera at `vertex` looking at `fixation` with the narrowest square field
+// of view (times kFovMargin) that holds every point of `held`; a pyramid is
+// convex, so it then holds their convex hull.
+MapCamera camera_holding(const Scene& scene, Vec3 vertex, Vec3 fixation, const std::vector<Vec3>& held)
+{
+    const Basis frame = basis_looking_along(fixation - vertex, scene.light.up);
+    double widest = 0;
+    for (const Vec3& p : held) {
+        const Vec3 local = frame.to_local(p - vertex);
+        require(local.z > 0, kOperation, "light",
+                "a point the maps must hold lies behind a light vertex; move the light camera's near plane out "
+                "or the light away from the scene");
+        widest = std::max({widest, std::fabs(local.x) / local.z, std::fabs(local.y) / local.z});
+    }
+    require(widest > 0, kOperation, "light", "the maps have nothing to hold: no receiver and no caster");
+    return MapCamera{to_array(vertex), to_array(frame.s), to_array(frame.t), to_array(frame.n), kFovMargin * widest};
+}
+
 }  // namespace
 
 std::vector<Primitive> pismo_casters(const Scene& scene)
@@ -119,18 +138,32 @@ Vec3 pismo_fixation_point(const Scene& scene)
 
 MapCamera pismo_vertex_camera(const Scene& scene, Vec3 vertex, Vec3 fixation)
 {
-    const Basis frame = basis_looking_along(fixation - vertex, scene.light.up);
     const LightProjection light(scene);
     const double slab[2] = {nearest_caster_depth(scene, light.basis()), scene.light_camera.far};
-    double widest = 0;
+    std::vector<Vec3> corners;
     for (double depth : slab)
-        for (int corner = 0; corner < 4; ++corner) {
-            const Vec3 local = frame.to_local(light.ray_through(corner & 1, corner >> 1).at(depth) - vertex);
-            require(local.z > 0, kOperation, "light",
-                    "the light's frustum reaches behind a light vertex; move the light camera's near plane out");
-            widest = std::max({widest, std::fabs(local.x) / local.z, std::fabs(local.y) / local.z});
-        }
-    return MapCamera{to_array(vertex), to_array(frame.s), to_array(frame.t), to_array(frame.n), kFovMargin * widest};
+        for (int corner = 0; corner < 4; ++corner) corners.push_back(light.ray_through(corner & 1, corner >> 1).at(depth));
+    return camera_holding(scene, vertex, fixation, corners);
+}
+
+MapCamera pismo_fitted_camera(const Scene& scene, Vec3 vertex, Vec3 fixation, std::span<const Vec3> region)
+{
+    std::vector<Vec3> held(region.begin(), region.end());
+    if (const auto b = casters_bounds(scene))
+        for (int corner = 0; corner < 8; ++corner)
+            held.push_back({corner & 1 ? b->hi.x : b->lo.x, corner & 2 ? b->hi.y : b->lo.y, corner & 4 ? b->hi.z : b->lo.z});
+    return camera_holding(scene, vertex, fixation, held);
+}
+
+std::vector<Vec3> receiver_region(const Receivers& rx)
+{
+    std::vector<Vec3> region;
+    for (int y = 0; y < rx.height(); ++y)
+        for (int x = 0; x < rx.width(); ++x)
+            if (rx.mask.at(0, x, y) > 0.5f)
+                region.push_back({rx.world_position.at(0, x, y), rx.world_position.at(1, x, y),
+                                  rx.world_position.at(2, x, y)});
+    return region;
 }
 
 LayeredDepthMap render_layered_depth_map(const PreparedScene& casters, const MapCamera& camera,
@@ -168,7 +201,8 @@ LayeredDepthMap render_layered_depth_map(const PreparedScene& casters, const Map
     return builder.build();
 }
 
-PismoMaps render_pismo_maps(const Scene& scene, int level, const LayeredMapOptions& options)
+PismoMaps render_pismo_maps(const Scene& scene, int level, const LayeredMapOptions& options,
+                            std::span<const Vec3> region)
 {
     validate_scene(scene, kOperation);
     check(options);
@@ -176,8 +210,23 @@ PismoMaps render_pismo_maps(const Scene& scene, int level, const LayeredMapOptio
     const PreparedScene casters(pismo_casters(scene));
     out.maps.reserve(out.mesh.vertices.size());
     for (const Vec3& vertex : out.mesh.vertices)
-        out.maps.push_back(render_layered_depth_map(casters, pismo_vertex_camera(scene, vertex, out.fixation), options));
+        out.maps.push_back(render_layered_depth_map(
+            casters, region.empty() ? pismo_vertex_camera(scene, vertex, out.fixation)
+                                    : pismo_fitted_camera(scene, vertex, out.fixation, region),
+            options));
     return out;
+}
+
+PismoMapSet render_pismo_map_set(const Scene& scene, int level, const LayeredMapOptions& options,
+                                 std::span<const Vec3> region)
+{
+    PismoMaps maps = render_pismo_maps(scene, level, options, region);
+    PismoMapSet set;
+    for (const Vec3& v : maps.mesh.vertices) set.vertices.push_back(to_array(v));
+    set.triangles = std::move(maps.mesh.triangles);
+    set.maps = std::move(maps.maps);
+    set.scene = scene.name, set.level = level, set.fixation = to_array(maps.fixation);
+    return set;
 }
 
 }  // namespace penumbra::reference

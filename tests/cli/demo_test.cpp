@@ -136,6 +136,7 @@ TEST(Demo, QuickRunCoversEveryMethodOnEverySceneWithoutNaN)
     }
     EXPECT_TRUE(all_methods.count("vsm") && all_methods.count("vssm"));
     EXPECT_TRUE(all_methods.count("dsm"));  // on a deep map the demo renders per frame
+    EXPECT_TRUE(all_methods.count("pismo") && all_methods.count("pismo-maxdepth"));  // on the frame's Pismo maps
     EXPECT_TRUE(fs::exists(out / "chart.png"));
     expect_report_names_only_existing_pictures(out, all_methods);
     fs::remove_all(out);

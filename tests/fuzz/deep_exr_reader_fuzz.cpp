@@ -1,5 +1,7 @@
 // libFuzzer target: the deep shadow map reader (host/src/deep_exr_read.cpp,
-// deep_exr_samples.cpp), docs/deep_shadow_maps.md "Bad input".
+// deep_exr_samples.cpp), docs/deep_shadow_maps.md "Bad input", and on the
+// same bytes the layered depth map reader that shares its checks
+// (host/src/layered_exr.cpp, Pismo's map files).
 //
 // Oracle: every input either reads, into a map whose invariants hold, or
 // throws penumbra::Error. Anything else is a finding: a sanitizer report, a
@@ -13,6 +15,7 @@
 #include "fuzz_input_file.h"
 #include "penumbra/deep_exr.h"
 #include "penumbra/error.h"
+#include "penumbra/layered_exr.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
@@ -27,6 +30,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             }
     } catch (const penumbra::Error&) {
         // A refused file: the expected outcome for almost every mutated input.
+    }
+    try {
+        // An accepted layered map holds its invariants (its constructor checked
+        // them); every pixel's layers are in range of the depth array.
+        const penumbra::LayeredDepthMap map = penumbra::read_layered_exr(path);
+        std::size_t layers = 0;
+        for (int y = 0; y < map.height(); ++y)
+            for (int x = 0; x < map.width(); ++x) layers += map.layers(x, y).size();
+        if (layers != map.depths().size()) std::abort();
+    } catch (const penumbra::Error&) {
+        // Refused, as almost every mutated input is.
     }
     return 0;
 }

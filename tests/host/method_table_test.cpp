@@ -32,7 +32,7 @@ TEST(MethodTable, ListsEachMethodOnceWithKnownOptions)
         }
     }
     EXPECT_EQ(names, (std::set<std::string>{"vsm", "vssm", "msm", "msm-soft", "evsm2", "evsm4", "pcf", "pcf-gauss",
-                                            "pcf-disc", "pcss", "burley", "dsm"}));
+                                            "pcf-disc", "pcss", "burley", "dsm", "pismo", "pismo-maxdepth"}));
 }
 
 // A value just outside the range: below an open or closed lower bound, above an upper one.
@@ -81,7 +81,7 @@ TEST(MethodTable, PrepareThenShadeIsRunAndThePreparedTableIsReused)
     const Image map = testing::random_depth(9, 7, 3);
     const Image rx = testing::receivers_on_texels(7, 3, 9, 7, 0.1f, 0.9f, 4);
     for (const Method& m : methods()) {
-        if (m.input != MethodInput::ShadowMap) continue;  // DeepMapMethod below
+        if (m.input != MethodInput::ShadowMap) continue;  // DeepMapMethod, PismoMethod (tests/cli)
         MethodSettings s;
         s.radius = 1;
         const Image expected = m.run(ctx, map, rx, s);

@@ -13,6 +13,8 @@
 #include "penumbra/deep_shadow_map.h"
 #include "penumbra/error.h"
 #include "penumbra/methods.h"
+#include "penumbra/reference/pismo_maps.h"
+#include "support/pismo_scenes.h"
 
 namespace penumbra {
 namespace {
@@ -76,12 +78,23 @@ TEST(MethodWarmUp, BuildsEveryProgramTheRunOfEachMethodLaunches)
         GTEST_SKIP() << "no OpenCL here: " << e.what();
     }
     const Image map = ramp_map(), receivers = receivers_over(23, 17);
+    reference::LayeredMapOptions small;
+    small.size = 8;
+    const PismoMapSet pismo_set = reference::render_pismo_map_set(testing::half_plane_scene(), 0, small);
+    Image pismo_receivers(23, 17, 3);  // ground points under the light, world positions
+    for (int y = 0; y < 17; ++y)
+        for (int x = 0; x < 23; ++x) {
+            pismo_receivers.at(0, x, y) = -1.5f + 3.0f * float(x) / 22;
+            pismo_receivers.at(2, x, y) = -0.5f + float(y) / 16;
+        }
     for (const Method& method : methods()) {
         const MethodSettings settings{};
         method.warm_up(*context, settings);  // builds what this method adds to the methods before it
         const double warmed = context->program_build_seconds();
         if (method.input == MethodInput::DeepMap)
             (void)method.run(*context, half_shadowing_deep_map(), receivers, settings);
+        else if (method.input == MethodInput::PismoMapSet)
+            (void)method.run(*context, pismo_set, pismo_receivers, settings);
         else
             (void)method.run(*context, map, receivers, settings);
         EXPECT_EQ(context->program_build_seconds(), warmed) << method.name << ": the run built a program "

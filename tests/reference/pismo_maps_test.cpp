@@ -17,6 +17,7 @@
 #include "penumbra/error.h"
 #include "penumbra/reference/light_space.h"
 #include "penumbra/reference/pismo_maps.h"
+#include "penumbra/reference/render.h"
 #include "support/errors.h"
 
 namespace penumbra::reference {
@@ -133,6 +134,35 @@ TEST(PismoVertexCamera, HoldsTheLightsFrustumBehindTheCasters)
             }
         }
     }
+}
+
+// Fitted to the view's receivers: every receiver and the casters' box inside
+// every map, and a narrower field of view than the frustum's camera.
+TEST(PismoFittedCamera, HoldsTheReceiversAndTheCastersNarrowerThanTheFrustum)
+{
+    for (const char* name : {"contact", "overlap", "fence"}) {
+        const Scene scene = builtin_scene(name);
+        const std::vector<Vec3> region = receiver_region(render_receivers(scene, 32, 24));
+        ASSERT_FALSE(region.empty()) << name;
+        const Vec3 fixation = pismo_fixation_point(scene);
+        for (const Vec3& vertex : light_mesh(scene.light, 1).vertices) {
+            const MapCamera fitted = pismo_fitted_camera(scene, vertex, fixation, region);
+            EXPECT_LT(fitted.tan_half_fov, pismo_vertex_camera(scene, vertex, fixation).tan_half_fov) << name;
+            for (const Vec3& p : region) {
+                const auto [u, v] = map_uv(fitted, p);
+                EXPECT_TRUE(u > 0 && u < 1 && v > 0 && v < 1) << name << " (" << u << ", " << v << ")";
+            }
+        }
+    }
+}
+
+TEST(PismoFittedCamera, APointBehindTheLightIsRefused)
+{
+    const Scene scene = builtin_scene("contact");
+    const Vec3 behind = scene.light.center - scene.light.normal * 5.0;
+    const std::vector<Vec3> region = {behind};
+    expect_error([&] { (void)pismo_fitted_camera(scene, scene.light.center, pismo_fixation_point(scene), region); },
+                 ErrorCategory::InvalidArgument, "pismo_maps", {"behind a light vertex"});
 }
 
 MapCamera looking_along_z(double tan_half_fov)

@@ -12,6 +12,7 @@
 #include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfTileDescription.h>
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -27,6 +28,7 @@ struct RawDeep {
     std::vector<std::map<std::string, std::vector<float>>> pixels;
     Imf::Compression compression = Imf::ZIPS_COMPRESSION;
     int tile = 0;  // 0: scanline; else square tiles of this size
+    std::function<void(Imf::Header&)> edit_header;  // attributes to add, when set
 
     RawDeep(int w, int h) : width(w), height(h), pixels(std::size_t(w) * std::size_t(h)) {}
     std::map<std::string, std::vector<float>>& at(int x, int y) { return pixels[std::size_t(y) * width + x]; }
@@ -42,6 +44,7 @@ inline void write_raw_deep(const std::string& path, RawDeep raw)
     }
     header.setType(raw.tile ? Imf::DEEPTILE : Imf::DEEPSCANLINE);
     if (raw.tile) header.setTileDescription(Imf::TileDescription(raw.tile, raw.tile, Imf::ONE_LEVEL));
+    if (raw.edit_header) raw.edit_header(header);
 
     const std::size_t pixels = raw.pixels.size();
     std::vector<unsigned> counts(pixels, 0);

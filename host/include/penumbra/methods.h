@@ -30,6 +30,8 @@
 #include "penumbra/parameter_range.h"
 #include "penumbra/soft_pcf.h"
 #include "penumbra/pcf.h"
+#include "penumbra/pismo.h"
+#include "penumbra/pismo_files.h"
 
 namespace penumbra {
 
@@ -65,19 +67,23 @@ struct MethodSettings {
     // Deep shadow map lookups (penumbra/deep_lookup.h); depth_bias unset: kDeepDefaultBias.
     DeepFilter deep_filter = DeepLookupOptions{}.filter;
     DeepSearch deep_search = DeepLookupOptions{}.search;
+    // Pismo (penumbra/pismo.h): rays per shading point.
+    int rays = PismoOptions{}.rays;
 };
 
 // What a method's build step reads: a shadow map (one channel of depth in
-// [0, 1], `penumbra shade --shadow-map`) or a deep shadow map (`--deep-map`).
-enum class MethodInput { ShadowMap, DeepMap };
+// [0, 1], `penumbra shade --shadow-map`), a deep shadow map (`--deep-map`) or
+// Pismo's light mesh and layered maps (`--pismo-maps`, or rendered from
+// `--scene`: penumbra/pismo_files.h).
+enum class MethodInput { ShadowMap, DeepMap, PismoMapSet };
 
 // Each input once: the library parameter its errors name (Error::parameter())
 // and the front end's name for it (the CLI's flag, without "--").
 struct MethodInputInfo {
     MethodInput input;
-    const char* parameter;  // "depth", "deep-map"
-    const char* flag;       // "shadow-map", "deep-map"
-    const char* what;       // "shadow map", "deep shadow map"
+    const char* parameter;  // "depth", "deep-map", "maps"
+    const char* flag;       // "shadow-map", "deep-map", "pismo-maps"
+    const char* what;       // "shadow map", "deep shadow map", "set of Pismo maps"
 };
 const std::vector<MethodInputInfo>& method_inputs();
 const MethodInputInfo& input_info(MethodInput input);
@@ -91,6 +97,12 @@ class PreparedMap {
 public:
     explicit PreparedMap(const Image& map) : map_(&map) {}
     explicit PreparedMap(const DeepShadowMap& map) : deep_map_(&map) {}
+    // Pismo's build step: the maps ready for the shadow-ray test (bled, and
+    // the maximum-depth variant derived when asked), from the stored set.
+    PreparedMap(const PismoMapSet& set, PismoMaps maps)
+        : pismo_set_(&set), table_(std::make_shared<const PismoMaps>(std::move(maps)))
+    {
+    }
     template <class Table>
     PreparedMap(const Image& map, Table&& table)
         : map_(&map), table_(std::make_shared<const std::decay_t<Table>>(std::forward<Table>(table)))
@@ -99,6 +111,7 @@ public:
 
     const Image& map() const { return *map_; }  // a ShadowMap method's
     const DeepShadowMap& deep_map() const { return *deep_map_; }  // a DeepMap method's
+    const PismoMapSet& pismo_set() const { return *pismo_set_; }  // a PismoMapSet method's
     // Whether the build step made a table (a box method at a small radius
     // makes none: its shade step sums the window from the map).
     bool has_table() const { return table_.has_value(); }
@@ -117,6 +130,7 @@ private:
     std::shared_ptr<const void> owner_;
     const Image* map_ = nullptr;
     const DeepShadowMap* deep_map_ = nullptr;
+    const PismoMapSet* pismo_set_ = nullptr;
     std::any table_;  // std::shared_ptr<const Table>: shared, never copied
 };
 
@@ -152,6 +166,8 @@ struct Method {
     // What the build step reads; a DeepMap method's build step is prepare_deep.
     MethodInput input = MethodInput::ShadowMap;
     PreparedMap (*prepare_deep)(Context& context, const DeepShadowMap& map, const MethodSettings& settings) = nullptr;
+    // A PismoMapSet method's build step (its receivers: world positions, receiver_channels).
+    PreparedMap (*prepare_pismo)(Context& context, const PismoMapSet& set, const MethodSettings& settings) = nullptr;
 
     // Both steps, into a new image, as `penumbra shade` and `penumbra demo`
     // run a method; a benchmark times each step alone. Each throws
@@ -172,6 +188,7 @@ struct Method {
                     const MethodSettings& settings, const MutableImageView& out) const;
     void run(Context& context, const ImageView& map, const ImageView& receivers, const MethodSettings& settings,
              const MutableImageView& out) const;
+    Image run(Context& context, const PismoMapSet& set, const Image& receivers, const MethodSettings& settings) const;
     // Both steps on a one-texel map and receivers, on a backend that builds
     // or loads its programs on first use (OpenCL), so that this method's are
     // ready before a real run (start_context's `prepare`); nothing on the
@@ -183,6 +200,9 @@ struct Method {
 // The receivers' channels a method run with `settings` reads from a file:
 // u, v, z, and dzdu, dzdv when a bias takes its derivatives from channels.
 std::vector<std::string> receiver_channels(const MethodSettings& settings);
+// The same for `method`: a PismoMapSet method reads world positions P.x, P.y,
+// P.z (render-scene's RX.exr channels), the others as above.
+std::vector<std::string> receiver_channels(const Method& method, const MethodSettings& settings);
 
 // The build step of a method that reads the shadow map itself: keeps no table.
 PreparedMap prepare_map(Context& context, const Image& map, const MethodSettings& settings);

@@ -6,9 +6,12 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include "penumbra/layered_depth_map.h"
+#include "penumbra/pismo_files.h"
+#include "penumbra/reference/render.h"
 #include "penumbra/reference/scene.h"
 #include "penumbra/reference/tracer.h"
 
@@ -62,6 +65,20 @@ Vec3 pismo_fixation_point(const Scene& scene);
 // and the light. Error(InvalidArgument) when a corner lies behind the vertex.
 MapCamera pismo_vertex_camera(const Scene& scene, Vec3 vertex, Vec3 fixation);
 
+// The same camera fitted to a region instead of the whole frustum: the
+// narrowest square field of view (times 1.02) that holds every point of
+// `region` (the receivers to be shaded) and the corners of the bounded
+// casters' bounding box, so their convex hull. The light frustum of a scene
+// holds far more ground than a view sees: fitted maps spend their texels on
+// the receivers that are shaded and on what shadows them (docs/pismo.md,
+// "Cameras fitted to the receivers"). A caster outside the box (an unbounded
+// plane) is seen only where it falls inside. Error(InvalidArgument) when a
+// point lies behind the vertex.
+MapCamera pismo_fitted_camera(const Scene& scene, Vec3 vertex, Vec3 fixation, std::span<const Vec3> region);
+
+// The world positions of the valid receivers (mask): a region to fit to.
+std::vector<Vec3> receiver_region(const Receivers& rx);
+
 struct LayeredMapOptions {
     int size = 512;        // each map is size x size, in [1, 8192]
     int max_layers = 8;    // per pixel, in [1, 64]: the nearest this many surfaces are kept
@@ -85,7 +102,14 @@ struct PismoMaps {
     std::vector<LayeredDepthMap> maps;  // one per mesh vertex, in vertex order
 };
 
-// The mesh at `level` and a layered map from each of its vertices.
-PismoMaps render_pismo_maps(const Scene& scene, int level, const LayeredMapOptions& options);
+// The mesh at `level` and a layered map from each of its vertices: cameras of
+// pismo_vertex_camera, or of pismo_fitted_camera when `region` is not empty.
+PismoMaps render_pismo_maps(const Scene& scene, int level, const LayeredMapOptions& options,
+                            std::span<const Vec3> region = {});
+
+// The same, as the library's set of maps (penumbra/pismo_files.h: what
+// pismo-build writes and pismo_shade's maps are made of).
+PismoMapSet render_pismo_map_set(const Scene& scene, int level, const LayeredMapOptions& options,
+                                 std::span<const Vec3> region = {});
 
 }  // namespace penumbra::reference

@@ -1,0 +1,158 @@
+// Issue 15's measured convergence of Pismo (docs/pismo.md, "Convergence to
+// the truth's noise"): on contact, overlap and fence, the RMSE against the
+// ray-traced truth of Pismo (layered maps), the average of hard shadows from
+// the same maps and the maximum-depth variant, as the light mesh goes from
+// level 0 to 3 (4 to 81 maps), for three map settings:
+//   frustum  cameras holding the scene's whole light frustum (pismo_vertex_camera)
+//   fitted   cameras fitted to the view's receivers (pismo_fitted_camera)
+// at the map sizes given; beside each row the truth's own noise and the maps'
+// memory and render time; and the same errors on the receivers that lie on
+// the scene's planes (the ground: outside the casters' hull, where only the
+// maps' resolution and the rays limit the answer, not the casters' own
+// terminators). All in float64 (tests/support/pismo_reference.h),
+// no kernel. Prints a Markdown table and writes every row to a CSV for
+// bench/pismo_acceptance_chart.py. Figures, not checks.
+//
+// usage: pismo_acceptance [--quick] OUT.csv
+//
+// The truth has S x S strata per receiver; its noise is its RMSE against the
+// truth at 2S x 2S (4x the rays), which holds about sqrt(1 + 1/4) times the
+// S truth's own noise. Pismo casts S x S rays per receiver, so at the floor
+// its RMSE is about sqrt(2) times the truth's noise: its own sampling noise
+// and the truth's, when the maps add no error of their own.
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "penumbra/reference/ground_truth.h"
+#include "penumbra/reference/metrics.h"
+#include "penumbra/reference/pismo_maps.h"
+#include "penumbra/reference/render.h"
+#include "support/pismo_estimates.h"
+
+using namespace penumbra;
+
+namespace {
+
+struct MapSetting {
+    const char* cameras;  // "frustum" or "fitted"
+    int size;
+};
+
+struct Config {
+    int view_width = 64, view_height = 48;
+    int strata = 32;
+    int max_level = 3;
+    std::vector<const char*> scenes = {"contact", "overlap", "fence"};
+    std::vector<MapSetting> settings = {{"frustum", 384}, {"fitted", 384}, {"fitted", 1024}};
+};
+
+struct Row {
+    std::string scene, cameras;
+    int size = 0, level = 0, maps = 0;
+    double pismo = 0, averaged = 0, maximum_depth = 0, truth_noise = 0;
+    double pismo_planes = 0, averaged_planes = 0, planes_noise = 0;  // on the planes' receivers only
+    double megabytes = 0, render_seconds = 0;
+};
+
+struct SceneTruth {
+    reference::Receivers rx;
+    Image truth, planes;  // planes: the receivers on the scene's planes, outside the casters' hull
+    double noise = 0, planes_noise = 0;
+};
+
+SceneTruth truth_for(const reference::Scene& scene, const Config& c)
+{
+    SceneTruth t{reference::render_receivers(scene, c.view_width, c.view_height), Image(), Image(), 0, 0};
+    t.truth = reference::ground_truth(scene, t.rx, {c.strata});
+    t.planes = testing::receivers_on_planes(scene, t.rx, true);
+    const Image finer = reference::ground_truth(scene, t.rx, {2 * c.strata});
+    t.noise = reference::rmse(t.truth, finer, &t.rx.mask);
+    t.planes_noise = reference::rmse(t.truth, finer, &t.planes);
+    return t;
+}
+
+Row measure(const reference::Scene& scene, const SceneTruth& t, const MapSetting& setting, int level, const Config& c)
+{
+    reference::LayeredMapOptions mo;
+    mo.size = setting.size;
+    const bool fitted = std::string(setting.cameras) == "fitted";
+    const std::vector<reference::Vec3> region = fitted ? reference::receiver_region(t.rx) : std::vector<reference::Vec3>{};
+    const auto start = std::chrono::steady_clock::now();
+    const reference::PismoMaps maps = reference::render_pismo_maps(scene, level, mo, region);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    testing::PismoReferenceOptions po;
+    po.rays = c.strata * c.strata;
+    const testing::PismoEstimates e = testing::pismo_estimates(maps, t.rx, po);
+    const Image* mask = &t.rx.mask;
+    return {scene.name,
+            setting.cameras,
+            setting.size,
+            level,
+            int(maps.maps.size()),
+            reference::rmse(e.pismo, t.truth, mask),
+            reference::rmse(e.averaged, t.truth, mask),
+            reference::rmse(e.maximum_depth, t.truth, mask),
+            t.noise,
+            reference::rmse(e.pismo, t.truth, &t.planes),
+            reference::rmse(e.averaged, t.truth, &t.planes),
+            t.planes_noise,
+            double(testing::pismo_layered_bytes(maps)) / 1e6,
+            seconds};
+}
+
+void write_csv(const std::string& path, const std::vector<Row>& rows)
+{
+    std::ofstream out(path);
+    out << "scene,cameras,map_size,level,maps,pismo,averaged,maximum_depth,truth_noise,pismo_planes,averaged_planes,"
+           "planes_noise,megabytes,render_seconds\n";
+    for (const Row& r : rows)
+        out << r.scene << ',' << r.cameras << ',' << r.size << ',' << r.level << ',' << r.maps << ',' << r.pismo << ','
+            << r.averaged << ',' << r.maximum_depth << ',' << r.truth_noise << ',' << r.pismo_planes << ','
+            << r.averaged_planes << ',' << r.planes_noise << ',' << r.megabytes << ',' << r.render_seconds << '\n';
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    Config c;
+    std::string csv;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--quick") {
+            c.view_width = 32, c.view_height = 24, c.strata = 8, c.max_level = 1;
+            c.settings = {{"frustum", 128}, {"fitted", 128}};
+        } else {
+            csv = arg;
+        }
+    }
+    if (csv.empty()) {
+        std::fprintf(stderr, "usage: pismo_acceptance [--quick] OUT.csv\n");
+        return 2;
+    }
+    std::printf("pismo_acceptance: %dx%d receivers, truth %d^2 strata (noise against %d^2), Pismo %d rays\n\n",
+                c.view_width, c.view_height, c.strata, 2 * c.strata, c.strata * c.strata);
+    std::printf("| scene | cameras | map | level | maps | Pismo (layered) | averaged hard shadows | Pismo (maximum depth) "
+                "| truth noise | Pismo, planes | averaged, planes | truth noise, planes | maps MB | render s |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::vector<Row> rows;
+    for (const char* name : c.scenes) {
+        const reference::Scene scene = reference::builtin_scene(name);
+        const SceneTruth t = truth_for(scene, c);
+        for (const MapSetting& setting : c.settings)
+            for (int level = 0; level <= c.max_level; ++level) {
+                const Row r = measure(scene, t, setting, level, c);
+                std::printf("| %s | %s | %d | %d | %d | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.1f | %.1f |\n",
+                            r.scene.c_str(), r.cameras.c_str(), r.size, r.level, r.maps, r.pismo, r.averaged,
+                            r.maximum_depth, r.truth_noise, r.pismo_planes, r.averaged_planes, r.planes_noise,
+                            r.megabytes, r.render_seconds);
+                std::fflush(stdout);
+                rows.push_back(r);
+                write_csv(csv, rows);  // every row so far: a long run leaves what it measured
+            }
+    }
+    return 0;
+}
