@@ -132,6 +132,13 @@ PYBIND11_MODULE(penumbra, m)
         .def_property_readonly("reason", &penumbra::Context::reason);
 
     m.def("methods", &method_names, "The method table's methods, by name.");
+    m.def(
+        "method_input",
+        [](const std::string& method) {
+            return std::string(penumbra::input_info(penumbra::find_method(method).input).flag);
+        },
+        py::arg("method"),
+        "What the method reads: 'shadow-map' (shade's depth), or 'deep-map' and 'pismo-maps' (not from Python yet).");
     m.def("methods_help", [] { return penumbra::methods_help(); });
     m.def("options_help", [] { return penumbra::method_options_help(""); },
           "Every method option (pass as keyword arguments, '-' spelt '_').");
