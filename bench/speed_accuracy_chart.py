@@ -12,8 +12,9 @@ log; y = RMSE against the ray-traced ground truth; a marker per family
 per method within its family, a point per setting labelled with it, and
 each method's Pareto front (the settings no other setting of the same
 method beats on both time and error) joined by a line. The dashed line is
-the truth's own noise (its RMSE against a truth with 4x the rays):
-differences below it are not resolved.
+the truth's own noise (its RMSE against a truth with 4x the rays; 0 for
+the sun's exact truth; not drawn on the obscurance panels, whose truth's
+noise the demo does not measure): differences below it are not resolved.
 The legend takes an empty panel where there is one.
 Needs matplotlib (Debian's python3-matplotlib, for /usr/bin/python3).
 """
@@ -76,7 +77,7 @@ def draw_panel(ax, rows, style):
                         color=colour, alpha=0.9)
         front = pareto_front(list(zip(xs, ys)))
         ax.plot([p[0] for p in front], [p[1] for p in front], color=colour, lw=1.2)
-    if rows:
+    if rows and rows[0].get("truth", "shadow") != "obscurance":  # the obscurance truth's noise is not measured
         ax.axhline(float(rows[0]["truth_noise"]), color="grey", ls="--", lw=0.8)
     ax.set_xscale("log")
     # Ticks at 1, 2, 5 per decade, labelled: a panel spanning less than a

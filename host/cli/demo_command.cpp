@@ -427,6 +427,7 @@ void print_table(const std::vector<DemoRow>& rows, const std::string& frame)
 
 void print_summary(const std::vector<SceneSummary>& summaries, const std::string& frame)
 {
+    if (summaries.empty()) return;  // only obscurance or sun rows were asked for
     std::printf("\nsummary: the most accurate method within each budget per %s frame, and overall\n",
                 frame.c_str());
     for (const SceneSummary& s : summaries) {
