@@ -459,22 +459,44 @@ bool wanted(const std::vector<std::string>& list, const std::string& name)
     return list.empty() || std::find(list.begin(), list.end(), name) != list.end();
 }
 
-// Refuses unknown names before any work (a typo once ran the whole demo for an
-// empty results.csv and a Python traceback).
-void require_known_methods(const DemoOptions& o)
+std::string joined(const std::vector<std::string>& items)
+{
+    std::string list;
+    for (const std::string& item : items) list += (list.empty() ? "" : ", ") + item;
+    return list;
+}
+
+// The methods with rows on the scenes named, in order, each once.
+std::vector<std::string> methods_on(const std::vector<std::string>& scenes, const DemoOptions& o)
 {
     std::vector<std::string> known;
-    for (const std::string& name : o.scenes) {
+    for (const std::string& name : scenes) {
         const reference::Scene scene = reference::builtin_scene(name);
         for (const DemoMethod& m : demo_methods(scene, map_size_for(scene, o)))
             if (std::find(known.begin(), known.end(), m.name) == known.end()) known.push_back(m.name);
     }
-    for (const std::string& name : o.methods)
-        if (std::find(known.begin(), known.end(), name) == known.end()) {
-            std::string list;
-            for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-            throw UsageError{"option --method: '" + name + "' is not a method; the methods are " + list};
+    return known;
+}
+
+// Refuses unknown names before any work (a typo once ran the whole demo for an
+// empty results.csv and a Python traceback), and a method with no rows on
+// the scenes asked for (ssao-vo needs an opaque scene, the sun's rows a
+// directional light), naming the scenes it has rows on.
+void require_known_methods(const DemoOptions& o)
+{
+    const std::vector<std::string> known = methods_on(o.scenes, o);
+    for (const std::string& name : o.methods) {
+        if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+        std::vector<std::string> scenes_with_it;
+        for (const std::string& scene : reference::builtin_scene_names(reference::SceneSet::All)) {
+            const std::vector<std::string> there = methods_on({scene}, o);
+            if (std::find(there.begin(), there.end(), name) != there.end()) scenes_with_it.push_back(scene);
         }
+        if (!scenes_with_it.empty())
+            throw UsageError{"option --method: '" + name + "' has no rows on the scenes asked for (" + joined(o.scenes) +
+                             "); it runs on " + joined(scenes_with_it)};
+        throw UsageError{"option --method: '" + name + "' is not a method; the methods are " + joined(known)};
+    }
 }
 
 // What the scenes' runs gather for the outputs.

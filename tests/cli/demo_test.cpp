@@ -286,6 +286,16 @@ TEST(Demo, BadSceneOrOptionIsBadInput)
     log << std::ifstream(out / "log.txt").rdbuf();
     EXPECT_NE(log.str().find("contact"), std::string::npos) << log.str();  // names the valid scenes
     EXPECT_EQ(run("demo --frames 1 --out " + out.string(), out / "log.txt"), 2);
+    // A method with no rows on the scenes asked for (fence has no sun) names the
+    // scenes it runs on.
+    EXPECT_EQ(run("demo --quick --scene fence --method cascades --out " + out.string(), out / "log.txt"), 2);
+    {
+        const std::string text = file_text(out / "log.txt");
+        EXPECT_NE(text.find("'cascades' has no rows on the scenes asked for (fence); it runs on contact, large"),
+                  std::string::npos)
+            << text;
+        EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+    }
     // Fewer than 5 repetitions, or a frame that is no WxH or too large: refused
     // with one line naming the option, before any work.
     for (const char* bad : {"--repetitions 4", "--repetitions x", "--frame 1920", "--frame 0x10", "--frame 5000x10",
