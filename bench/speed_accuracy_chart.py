@@ -3,15 +3,18 @@
 
 usage: speed_accuracy_chart.py results.csv chart.png
 
-One panel per scene: x = milliseconds per timed frame (the map's and the
+One panel per scene and truth (the `truth` column: the scene's light;
+ssao-vo's obscurance, another quantity; the sun, the directional light the
+cascades shade), each scene's shadow panel first: x = milliseconds per timed frame (the map's and the
 receivers' work, median of the repetitions; the bar spans their min-max),
 log; y = RMSE against the ray-traced ground truth; a marker per family
 (moments, distance fields, percentage-closer, deep shadow maps), a colour
 per method within its family, a point per setting labelled with it, and
 each method's Pareto front (the settings no other setting of the same
 method beats on both time and error) joined by a line. The dashed line is
-the truth's own noise (its RMSE against a truth with 4x the rays):
-differences below it are not resolved.
+the truth's own noise (its RMSE against a truth with 4x the rays; 0 for
+the sun's exact truth; not drawn on the obscurance panels, whose truth's
+noise the demo does not measure): differences below it are not resolved.
 The legend takes an empty panel where there is one.
 Needs matplotlib (Debian's python3-matplotlib, for /usr/bin/python3).
 """
@@ -38,7 +41,8 @@ def pareto_front(points):
 
 # A method's family by its name: ten colours cannot tell seventeen methods
 # apart, a colour within the family and a marker per family can.
-FAMILIES = (("sdf", "s"), ("pcf", "^"), ("pcss", "^"), ("burley", "^"), ("dsm", "*"), ("", "o"))
+FAMILIES = (("sdf", "s"), ("pcf", "^"), ("pcss", "^"), ("burley", "^"), ("dsm", "*"), ("ssao", "D"),
+            ("cascades", "v"), ("single-", "v"), ("", "o"))
 
 
 def family_marker(method):
@@ -73,7 +77,7 @@ def draw_panel(ax, rows, style):
                         color=colour, alpha=0.9)
         front = pareto_front(list(zip(xs, ys)))
         ax.plot([p[0] for p in front], [p[1] for p in front], color=colour, lw=1.2)
-    if rows:
+    if rows and rows[0].get("truth", "shadow") != "obscurance":  # the obscurance truth's noise is not measured
         ax.axhline(float(rows[0]["truth_noise"]), color="grey", ls="--", lw=0.8)
     ax.set_xscale("log")
     # Ticks at 1, 2, 5 per decade, labelled: a panel spanning less than a
@@ -84,23 +88,29 @@ def draw_panel(ax, rows, style):
     ax.grid(True, which="both", alpha=0.3)
 
 
+# A panel's title by what its rows are scored against.
+TRUTH_TITLES = {"shadow": "{}", "obscurance": "{}: ssao-vo, obscurance", "sun": "{}: the sun, cascades vs one map"}
+
+
 def main(csv_path, png_path):
     rows = list(csv.DictReader(open(csv_path, newline="")))
-    scenes = sorted({r["scene"] for r in rows}, key=[r["scene"] for r in rows].index)
+    for r in rows:
+        r.setdefault("truth", "shadow")  # a CSV from before the column
+    panels = sorted({(r["scene"], r["truth"]) for r in rows}, key=[(r["scene"], r["truth"]) for r in rows].index)
     methods = sorted({r["method"] for r in rows}, key=[r["method"] for r in rows].index)
     style = styles(methods)
-    columns = min(3, len(scenes))
-    lines = (len(scenes) + columns - 1) // columns
+    columns = min(3, len(panels))
+    lines = (len(panels) + columns - 1) // columns
     fig, axes = plt.subplots(lines, columns, figsize=(5.2 * columns, 4.2 * lines), squeeze=False)
-    spare = list(axes.flat[len(scenes):])
+    spare = list(axes.flat[len(panels):])
     for ax in spare:
         ax.set_visible(False)
     frame = rows[0]["frame"] if rows else ""
-    for ax, scene in zip(axes.flat, scenes):
-        draw_panel(ax, [r for r in rows if r["scene"] == scene], style)
-        ax.set_title(scene)
+    for ax, (scene, truth) in zip(axes.flat, panels):
+        draw_panel(ax, [r for r in rows if (r["scene"], r["truth"]) == (scene, truth)], style)
+        ax.set_title(TRUTH_TITLES.get(truth, "{}: " + truth).format(scene))
         ax.set_xlabel(f"ms per {frame} frame (map + receivers)")
-        ax.set_ylabel("RMSE vs ground truth")
+        ax.set_ylabel("RMSE vs ground truth" if truth == "shadow" else f"RMSE vs {truth} truth")
     handles = [plt.Line2D([], [], color=style[m][0], marker=style[m][1], lw=1.2, label=m) for m in methods]
     backend = rows[0]["backend"] if rows else ""
     fig.suptitle(f"penumbra: time against error ({backend})")

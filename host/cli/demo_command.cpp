@@ -24,6 +24,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <sstream>
 
@@ -39,10 +40,13 @@
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
 #include "penumbra/png_io.h"
+#include "penumbra/reference/cascades.h"
 #include "penumbra/reference/deep_map.h"
 #include "penumbra/reference/ground_truth.h"
 #include "penumbra/reference/light_space.h"
 #include "penumbra/reference/metrics.h"
+#include "penumbra/reference/obscurance_truth.h"
+#include "penumbra/ssao.h"
 #include "progress.h"
 
 namespace penumbra::cli {
@@ -166,13 +170,16 @@ std::uint64_t fnv1a(const std::string& text)
     return h;
 }
 
-Image cached_truth(const reference::Scene& scene, const reference::Receivers& rx, int strata, const fs::path& cache)
+// A truth image of the view, cached on disk under `kind` ("truth" for the
+// frame's shadow truth), keyed by the scene, the sizes and the strata.
+Image cached_image(const std::string& kind, const reference::Scene& scene, const reference::Receivers& rx,
+                   int strata, const fs::path& cache, const std::function<Image()>& compute)
 {
     char key[17];
     std::snprintf(key, sizeof key, "%016llx",
                   static_cast<unsigned long long>(fnv1a(reference::scene_to_json(scene) + "|" + std::to_string(rx.width()) +
                                                         "x" + std::to_string(rx.height()) + "|" + std::to_string(strata))));
-    const fs::path file = cache / ("truth-" + scene.name + "-" + key + ".exr");
+    const fs::path file = cache / (kind + "-" + scene.name + "-" + key + ".exr");
     if (fs::exists(file)) {
         try {
             Image truth = read_exr(file.string(), {"Y"});
@@ -181,10 +188,27 @@ Image cached_truth(const reference::Scene& scene, const reference::Receivers& rx
             // A damaged cache entry is recomputed below.
         }
     }
-    Image truth = reference::ground_truth(scene, rx, {strata});
+    Image truth = compute();
     create_output_directory(cache, "--out");
     write_exr(file.string(), truth, {"Y"});
     return truth;
+}
+
+Image cached_truth(const reference::Scene& scene, const reference::Receivers& rx, int strata, const fs::path& cache)
+{
+    return cached_image("truth", scene, rx, strata, cache,
+                        [&] { return reference::ground_truth(scene, rx, {strata}); });
+}
+
+// Volumetric obscurance of ssao-vo's ball: 8^3 points a receiver (4^3
+// quick), docs/ssao.md's accuracy table's; it does not depend on the light,
+// so frame 0's serves every frame.
+std::shared_ptr<const Image> obscurance_truth(const DemoFrame& f0, bool quick, const fs::path& cache)
+{
+    const int strata = quick ? 4 : 8;
+    return std::make_shared<const Image>(cached_image("obscurance", f0.scene, f0.receivers, strata, cache, [&] {
+        return reference::volumetric_obscurance_truth(f0.scene, f0.receivers, {SsaoOptions{}.radius, strata});
+    }));
 }
 
 // A scene's frames, the receivers its settings are timed on, and the truth's noise.
@@ -202,9 +226,10 @@ std::shared_ptr<const DeepShadowMap> render_deep_map(const reference::Scene& sce
     return std::make_shared<const DeepShadowMap>(reference::render_deep_shadow_map(scene, options));
 }
 
-// What the wanted methods read beside the shadow map, rendered per frame.
+// What the wanted methods read beside the shadow map: the deep and Pismo
+// maps per frame, the obscurance truth and the sun's inputs once a scene.
 struct FrameInputs {
-    bool deep = false, pismo = false;
+    bool deep = false, pismo = false, obscurance = false, sun = false;
 };
 
 std::vector<DemoFrame> render_frames(const reference::Scene& scene, const DemoOptions& o, FrameInputs inputs,
@@ -214,10 +239,18 @@ std::vector<DemoFrame> render_frames(const reference::Scene& scene, const DemoOp
     std::vector<DemoFrame> frames;
     for (const reference::Scene& shifted : reference::flicker_frames(scene, o.frames, map, map)) {
         DemoFrame f{shifted, reference::render_shadow_map(shifted, map, map),
-                    reference::render_receivers(shifted, o.view.width, o.view.height), Image(), nullptr, nullptr};
+                    reference::render_receivers(shifted, o.view.width, o.view.height), Image(), nullptr, nullptr,
+                    nullptr, nullptr};
         if (inputs.deep) f.deep_map = render_deep_map(shifted, map);
         if (inputs.pismo) f.pismo_maps = demo_pismo_maps(shifted, map, f.receivers);
         f.truth = cached_truth(shifted, f.receivers, o.strata, o.out / "cache");
+        if (!frames.empty()) {
+            f.obscurance_truth = frames[0].obscurance_truth;
+            f.sun = frames[0].sun;
+        } else {
+            if (inputs.obscurance) f.obscurance_truth = obscurance_truth(f, o.quick, o.out / "cache");
+            if (inputs.sun) f.sun = render_sun_inputs(shifted, map, f.receivers);
+        }
         frames.push_back(std::move(f));
         progress.step(scene.name + ": ground truth");
     }
@@ -228,21 +261,37 @@ std::vector<DemoFrame> render_frames(const reference::Scene& scene, const DemoOp
 // A surface facing away gets no direct light in any renderer (its N.L term
 // is zero, whatever the shadow says), and the truth there is 0 by geometry;
 // counting those pixels would score the N.L term, not the shadow filter.
-Image scored_mask(const DemoFrame& f)
+// Obscurance has no light: every valid receiver counts. The sun's are those
+// facing against its direction.
+Image scored_mask(const DemoFrame& f, DemoTruth truth = DemoTruth::Shadow)
 {
     const reference::Receivers& rx = f.receivers;
     Image mask(rx.width(), rx.height(), 1);
     const reference::Vec3 light = f.scene.light.center;
     for (int y = 0; y < rx.height(); ++y)
         for (int x = 0; x < rx.width(); ++x) {
-            const double to_light_x = light.x - rx.world_position.at(0, x, y);
-            const double to_light_y = light.y - rx.world_position.at(1, x, y);
-            const double to_light_z = light.z - rx.world_position.at(2, x, y);
-            const double facing = to_light_x * rx.normal.at(0, x, y) + to_light_y * rx.normal.at(1, x, y) +
-                                  to_light_z * rx.normal.at(2, x, y);
-            mask.at(0, x, y) = rx.mask.at(0, x, y) > 0.5f && facing > 0.0 ? 1.0f : 0.0f;
+            reference::Vec3 to_light{light.x - rx.world_position.at(0, x, y), light.y - rx.world_position.at(1, x, y),
+                                     light.z - rx.world_position.at(2, x, y)};
+            if (truth == DemoTruth::Sun) {
+                const reference::Vec3 d = f.scene.directional_lights[0].direction;
+                to_light = {-d.x, -d.y, -d.z};
+            }
+            const double facing = to_light.x * rx.normal.at(0, x, y) + to_light.y * rx.normal.at(1, x, y) +
+                                  to_light.z * rx.normal.at(2, x, y);
+            const bool lit_side = truth == DemoTruth::Obscurance || facing > 0.0;
+            mask.at(0, x, y) = rx.mask.at(0, x, y) > 0.5f && lit_side ? 1.0f : 0.0f;
         }
     return mask;
+}
+
+// What a method's rows are scored against (DemoMethod::truth).
+const Image& truth_of(const DemoFrame& f, DemoTruth truth)
+{
+    switch (truth) {
+    case DemoTruth::Obscurance: return *f.obscurance_truth;
+    case DemoTruth::Sun: return f.sun->truth;
+    default: return f.truth;
+    }
 }
 
 // Frame 0's truth against one with twice the strata per axis (4x the rays):
@@ -271,32 +320,34 @@ std::string format_ms(double ms)
 }
 
 // The accuracy of one setting (its times come later, from time_settings).
-DemoRow measure(Context& ctx, const DemoSetting& setting, const std::vector<DemoFrame>& frames, Image& first_estimate)
+DemoRow measure(Context& ctx, const DemoSetting& setting, DemoTruth truth, const std::vector<DemoFrame>& frames,
+                Image& first_estimate)
 {
     const DemoFrame& f0 = frames[0];
     first_estimate = run_setting(ctx, setting, f0);
-    std::vector<Image> estimates{first_estimate}, truths{f0.truth};
+    std::vector<Image> estimates{first_estimate}, truths{truth_of(f0, truth)};
     for (std::size_t k = 1; k < frames.size(); ++k) {
         estimates.push_back(run_setting(ctx, setting, frames[k]));
-        truths.push_back(frames[k].truth);
+        truths.push_back(truth_of(frames[k], truth));
     }
-    const Image scored = scored_mask(f0);
+    const Image scored = scored_mask(f0, truth);
     const Image* mask = &scored;
-    DemoRow row{f0.scene.name, "", setting.label, {}, 0, 0, 0, 0, 0, 0};
-    row.rmse = reference::rmse(first_estimate, f0.truth, mask);
-    row.p99 = reference::p99_abs_error(first_estimate, f0.truth, mask);
-    row.leak = reference::light_leaking(first_estimate, f0.truth, mask);
-    row.overdark = reference::over_darkening(first_estimate, f0.truth, mask);
+    DemoRow row{f0.scene.name, "", setting.label, truth, {}, 0, 0, 0, 0, 0, 0};
+    row.rmse = reference::rmse(first_estimate, truths[0], mask);
+    row.p99 = reference::p99_abs_error(first_estimate, truths[0], mask);
+    row.leak = reference::light_leaking(first_estimate, truths[0], mask);
+    row.overdark = reference::over_darkening(first_estimate, truths[0], mask);
     row.flicker = reference::flicker(estimates, truths, mask);
     return row;
 }
 
-void write_previews(const fs::path& dir, const std::string& method, const Image& estimate, const DemoFrame& f0)
+void write_previews(const fs::path& dir, const DemoMethod& method, const Image& estimate, const DemoFrame& f0)
 {
-    const Image scored = scored_mask(f0);
-    write_exr((dir / (method + ".exr")).string(), estimate, {"Y"});
-    write_visibility_png((dir / (method + ".png")).string(), estimate, f0.receivers.mask, scored);
-    write_error_png((dir / (method + "_error.png")).string(), estimate, f0.truth, f0.receivers.mask, scored);
+    const Image scored = scored_mask(f0, method.truth);
+    write_exr((dir / (method.name + ".exr")).string(), estimate, {"Y"});
+    write_visibility_png((dir / (method.name + ".png")).string(), estimate, f0.receivers.mask, scored);
+    write_error_png((dir / (method.name + "_error.png")).string(), estimate, truth_of(f0, method.truth),
+                    f0.receivers.mask, scored);
 }
 
 std::string frame_text(ViewSize frame)
@@ -309,12 +360,12 @@ void write_csv_rows(const fs::path& path, const std::vector<DemoRow>& rows, cons
 {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out << "scene,method,settings,backend,frame,map_ms,receiver_ms,frame_ms,frame_ms_min,frame_ms_max,repetitions,"
-           "rmse,p99,leak,overdark,flicker,truth_noise\n";
+           "rmse,p99,leak,overdark,flicker,truth_noise,truth\n";
     for (const DemoRow& r : rows)
         out << r.scene << "," << r.method << ",\"" << r.setting << "\"," << backend << "," << frame << ","
             << r.time.map_ms << "," << r.time.receiver_ms << "," << r.time.frame_ms << "," << r.time.frame_min_ms << ","
             << r.time.frame_max_ms << "," << r.time.repetitions << "," << r.rmse << "," << r.p99 << "," << r.leak
-            << "," << r.overdark << "," << r.flicker << "," << r.truth_noise << "\n";
+            << "," << r.overdark << "," << r.flicker << "," << r.truth_noise << "," << truth_name(r.truth) << "\n";
     out.flush();
     if (!out) throw Error(ErrorCategory::Io, "demo", "could not write " + path.string());
 }
@@ -366,16 +417,17 @@ void print_table(const std::vector<DemoRow>& rows, const std::string& frame)
 {
     std::printf("times in ms per %s frame: map (the table build), receivers, frame = both (median, min-max)\n",
                 frame.c_str());
-    std::printf("%-8s %-13s %-17s %8s %8s %8s %15s %7s %7s %7s %8s %7s\n", "scene", "method", "settings", "map",
+    std::printf("%-8s %-16s %-18s %8s %8s %8s %15s %7s %7s %7s %8s %7s\n", "scene", "method", "settings", "map",
                 "recv", "frame", "min-max", "RMSE", "p99", "leak", "overdark", "flicker");
     for (const DemoRow& r : rows)
-        std::printf("%-8s %-13s %-17s %8.3g %8.3g %8.3g %7.3g-%-7.3g %7.4f %7.4f %7.4f %8.4f %7.4f\n", r.scene.c_str(),
+        std::printf("%-8s %-16s %-18s %8.3g %8.3g %8.3g %7.3g-%-7.3g %7.4f %7.4f %7.4f %8.4f %7.4f\n", r.scene.c_str(),
                     r.method.c_str(), r.setting.c_str(), r.time.map_ms, r.time.receiver_ms, r.time.frame_ms,
                     r.time.frame_min_ms, r.time.frame_max_ms, r.rmse, r.p99, r.leak, r.overdark, r.flicker);
 }
 
 void print_summary(const std::vector<SceneSummary>& summaries, const std::string& frame)
 {
+    if (summaries.empty()) return;  // only obscurance or sun rows were asked for
     std::printf("\nsummary: the most accurate method within each budget per %s frame, and overall\n",
                 frame.c_str());
     for (const SceneSummary& s : summaries) {
@@ -407,22 +459,44 @@ bool wanted(const std::vector<std::string>& list, const std::string& name)
     return list.empty() || std::find(list.begin(), list.end(), name) != list.end();
 }
 
-// Refuses unknown names before any work (a typo once ran the whole demo for an
-// empty results.csv and a Python traceback).
-void require_known_methods(const DemoOptions& o)
+std::string joined(const std::vector<std::string>& items)
+{
+    std::string list;
+    for (const std::string& item : items) list += (list.empty() ? "" : ", ") + item;
+    return list;
+}
+
+// The methods with rows on the scenes named, in order, each once.
+std::vector<std::string> methods_on(const std::vector<std::string>& scenes, const DemoOptions& o)
 {
     std::vector<std::string> known;
-    for (const std::string& name : o.scenes) {
+    for (const std::string& name : scenes) {
         const reference::Scene scene = reference::builtin_scene(name);
         for (const DemoMethod& m : demo_methods(scene, map_size_for(scene, o)))
             if (std::find(known.begin(), known.end(), m.name) == known.end()) known.push_back(m.name);
     }
-    for (const std::string& name : o.methods)
-        if (std::find(known.begin(), known.end(), name) == known.end()) {
-            std::string list;
-            for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-            throw UsageError{"option --method: '" + name + "' is not a method; the methods are " + list};
+    return known;
+}
+
+// Refuses unknown names before any work (a typo once ran the whole demo for an
+// empty results.csv and a Python traceback), and a method with no rows on
+// the scenes asked for (ssao-vo needs an opaque scene, the sun's rows a
+// directional light), naming the scenes it has rows on.
+void require_known_methods(const DemoOptions& o)
+{
+    const std::vector<std::string> known = methods_on(o.scenes, o);
+    for (const std::string& name : o.methods) {
+        if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+        std::vector<std::string> scenes_with_it;
+        for (const std::string& scene : reference::builtin_scene_names(reference::SceneSet::All)) {
+            const std::vector<std::string> there = methods_on({scene}, o);
+            if (std::find(there.begin(), there.end(), name) != there.end()) scenes_with_it.push_back(scene);
         }
+        if (!scenes_with_it.empty())
+            throw UsageError{"option --method: '" + name + "' has no rows on the scenes asked for (" + joined(o.scenes) +
+                             "); it runs on " + joined(scenes_with_it)};
+        throw UsageError{"option --method: '" + name + "' is not a method; the methods are " + joined(known)};
+    }
 }
 
 // What the scenes' runs gather for the outputs.
@@ -463,8 +537,14 @@ void run_scene(Context& ctx, const DemoOptions& o, const reference::Scene& scene
     const auto reads = [&](MethodInput input) {
         return std::any_of(methods.begin(), methods.end(), [input](const DemoMethod& m) { return m.input == input; });
     };
-    const SceneFrames scene_frames =
-        render_scene_frames(scene, o, {reads(MethodInput::DeepMap), reads(MethodInput::PismoMapSet)}, progress);
+    const auto scored_against = [&](DemoTruth truth) {
+        return std::any_of(methods.begin(), methods.end(), [truth](const DemoMethod& m) { return m.truth == truth; });
+    };
+    const SceneFrames scene_frames = render_scene_frames(
+        scene, o,
+        {reads(MethodInput::DeepMap), reads(MethodInput::PismoMapSet), scored_against(DemoTruth::Obscurance),
+         scored_against(DemoTruth::Sun)},
+        progress);
     const std::vector<DemoFrame>& frames = scene_frames.frames;
     results.truth_noise.emplace_back(name, scene_frames.truth_noise);
     progress.milestone(name + ": ground truth, " + std::to_string(o.frames) + " frames");
@@ -478,13 +558,15 @@ void run_scene(Context& ctx, const DemoOptions& o, const reference::Scene& scene
     for (const DemoMethod& m : methods) {
         for (std::size_t s = 0; s < m.settings.size(); ++s) {
             Image estimate;
-            DemoRow row = measure(ctx, m.settings[s], frames, estimate);
+            DemoRow row = measure(ctx, m.settings[s], m.truth, frames, estimate);
             row.method = m.name;
-            row.truth_noise = scene_frames.truth_noise;
+            // The sun's truth is one exact ray a receiver; the obscurance
+            // truth's noise is not measured here (docs/demo.md).
+            row.truth_noise = m.truth == DemoTruth::Shadow ? scene_frames.truth_noise : 0.0;
             results.rows.push_back(row);
             settings.push_back(&m.settings[s]);
             if (int(s) == m.preview_setting) {
-                write_previews(dir, m.name, estimate, frames[0]);
+                write_previews(dir, m, estimate, frames[0]);
                 pictures.push_back({m.name, m.settings[s].label});
             }
             progress.step(name + ": " + m.name + " " + m.settings[s].label);

@@ -6,6 +6,7 @@
 #include "demo_methods.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <mutex>
@@ -13,10 +14,12 @@
 
 #include "penumbra/bilateral.h"
 #include "penumbra/methods.h"
+#include "penumbra/reference/cascades.h"
 #include "penumbra/reference/light_space.h"
 #include "penumbra/reference/pismo_maps.h"
 #include "penumbra/reference/sdf_scene.h"
 #include "penumbra/sdf.h"
+#include "penumbra/ssao.h"
 
 namespace penumbra::cli {
 namespace {
@@ -123,6 +126,10 @@ SoftLight soft_light_for(const reference::Scene& scene, int map_size)
     if (scene.light.shape != reference::LightShape::Point) return {};
     return {one_texel_light_side(scene, map_size)};
 }
+
+// No per-map step: what the setting reads was rendered with the frame (or,
+// for the distance fields, baked offline).
+DemoPrepared nothing_prepared(Context&, const DemoFrame&) { return DemoPrepared(); }
 
 // The box methods sweep the radius (EVSM with the exact table's default
 // exponents).
@@ -260,9 +267,8 @@ DemoMethod sdf_method(const reference::Scene& scene, int map_size, const SoftLig
                       Variant{"improved", SdfEstimate::Improved, 1.0f},
                       Variant{"classic k/2", SdfEstimate::Classic, 0.5f},
                       Variant{"classic 2k", SdfEstimate::Classic, 2.0f}}) {
-        // No per-map step: the grid is baked offline (and not timed).
         m.settings.push_back({.label = v.label,
-                              .prepare = [](Context&, const DemoFrame&) { return DemoPrepared(); },
+                              .prepare = nothing_prepared,
                               .shade = [grid, primitives, v, light](Context& ctx, const DemoFrame& f,
                                                                     const reference::Receivers& r,
                                                                     const DemoPrepared&) {
@@ -279,28 +285,106 @@ DemoMethod sdf_method(const reference::Scene& scene, int map_size, const SoftLig
 // the view depth (relative differences suit perspective depth), applied to
 // the noisiest estimates: small VSM windows alias, and distance-field
 // shadows band. The blur's cost is in the time; the chart shows what it buys.
-Image blurred(Context& ctx, const reference::Receivers& rx, const Image& visibility)
+BilateralOptions shadow_blur_options()
 {
     BilateralOptions o;
     o.relative = true;
     o.depth_sigma = 0.02f;
     o.separable = true;
-    return cross_bilateral(ctx, visibility, rx.view_depth, o);
+    return o;
 }
 
-// `source` at the settings numbered `blurred_settings`, each followed by the blur.
-DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vector<int> blurred_settings)
+// `source` at the settings numbered `blurred_settings`, each followed by the
+// blur (ssao-vo's rows take the notes' own 5x5, ssao_blur_options).
+DemoMethod blurred_method(DemoMethod source, const std::string& name, std::vector<int> blurred_settings,
+                          BilateralOptions blur = shadow_blur_options())
 {
-    DemoMethod m{.name = name, .settings = {}, .preview_setting = kFirstSetting};
+    DemoMethod m{.name = name, .settings = {}, .preview_setting = kFirstSetting, .input = source.input,
+                 .truth = source.truth};
     for (int index : blurred_settings) {
         DemoSetting inner = source.settings[std::size_t(index)];
         m.settings.push_back({.label = inner.label + " +blur",
                               .prepare = inner.prepare,
-                              .shade = [inner](Context& ctx, const DemoFrame& f, const reference::Receivers& rx,
-                                               const DemoPrepared& prepared) {
-                                  return blurred(ctx, rx, inner.shade(ctx, f, rx, prepared));
+                              .shade = [inner, blur](Context& ctx, const DemoFrame& f, const reference::Receivers& rx,
+                                                     const DemoPrepared& prepared) {
+                                  return cross_bilateral(ctx, inner.shade(ctx, f, rx, prepared), rx.view_depth, blur);
                               }});
     }
+    return m;
+}
+
+// ssao-vo (penumbra/ssao.h) on the view depth, one setting per rule for an
+// unusable sample, its output o scored against the volumetric-obscurance
+// truth of the same radius. The screen cap is off (1, the whole height) so
+// that the kernel's ball is the truth's at every depth, as in docs/ssao.md's
+// accuracy table; the notes' cap (0.07) would score the cap, not the rule.
+DemoMethod ssao_method()
+{
+    struct Rule {
+        const char* label;
+        SsaoUnusable unusable;
+    };
+    DemoMethod m{.name = "ssao-vo", .settings = {}, .preview_setting = kFirstSetting, .truth = DemoTruth::Obscurance};
+    for (Rule rule : {Rule{"paired", SsaoUnusable::Paired}, Rule{"zero", SsaoUnusable::Zero},
+                      Rule{"half", SsaoUnusable::Half}, Rule{"renormalise", SsaoUnusable::Renormalise}}) {
+        SsaoOptions o;
+        o.unusable = rule.unusable;
+        o.output = SsaoOutput::Obscurance;
+        o.max_screen_radius = 1.0;
+        m.settings.push_back({.label = rule.label,
+                              .prepare = nothing_prepared,
+                              .shade = [o](Context& ctx, const DemoFrame& f, const reference::Receivers& rx,
+                                           const DemoPrepared&) {
+                                  return ssao_obscurance(ctx, rx.view_depth, f.scene.view.fov_degrees, o);
+                              }});
+    }
+    return m;
+}
+
+// The sun's cascaded mask (penumbra/cascades.h) at the library's defaults,
+// the cascade chosen by box (Zhang 2009, the notes') or by split depth.
+DemoMethod cascades_method()
+{
+    struct Selection {
+        const char* label;
+        CascadeSelection selection;
+    };
+    DemoMethod m{.name = "cascades", .settings = {}, .preview_setting = kFirstSetting, .truth = DemoTruth::Sun};
+    const std::string k = "k=" + std::to_string(kDemoCascades) + " ";
+    for (Selection sel : {Selection{"box", CascadeSelection::BoundingBox},
+                          Selection{"split", CascadeSelection::SplitDepth}}) {
+        CascadeOptions o;
+        o.selection = sel.selection;
+        m.settings.push_back({.label = k + sel.label,
+                              .prepare = nothing_prepared,
+                              .shade = [o](Context& ctx, const DemoFrame& f, const reference::Receivers& rx,
+                                           const DemoPrepared&) {
+                                  const Image mask = cascade_mask(ctx, f.sun->cascades, f.sun->cascade_receivers(rx), o);
+                                  Image visibility(mask.width(), mask.height(), 1);  // channel 1 is the cascade used
+                                  for (int y = 0; y < mask.height(); ++y)
+                                      for (int x = 0; x < mask.width(); ++x) visibility.at(0, x, y) = mask.at(0, x, y);
+                                  return visibility;
+                              }});
+    }
+    return m;
+}
+
+// A shadow-map method's settings on the sun's single map of the cascades'
+// texels (SunInputs::single_map_frame), its receivers in that map's frame.
+DemoMethod single_map_method(const DemoMethod& source)
+{
+    DemoMethod m{.name = "single-" + source.name, .settings = {}, .preview_setting = source.preview_setting,
+                 .input = source.input, .truth = DemoTruth::Sun};
+    for (const DemoSetting& inner : source.settings)
+        m.settings.push_back({.label = inner.label,
+                              .prepare = [inner](Context& ctx, const DemoFrame& f) {
+                                  return inner.prepare(ctx, *f.sun->single_map_frame);
+                              },
+                              .shade = [inner](Context& ctx, const DemoFrame& f, const reference::Receivers& rx,
+                                               const DemoPrepared& prepared) {
+                                  return inner.shade(ctx, *f.sun->single_map_frame,
+                                                     f.sun->single_map_receivers(rx), prepared);
+                              }});
     return m;
 }
 
@@ -345,6 +429,66 @@ DemoMethod pismo_method(const char* name, const std::vector<int>& ray_counts)
 
 }  // namespace
 
+const char* truth_name(DemoTruth truth)
+{
+    switch (truth) {
+    case DemoTruth::Obscurance: return "obscurance";
+    case DemoTruth::Sun: return "sun";
+    default: return "shadow";
+    }
+}
+
+int demo_cascade_size(int map_size) { return std::min(reference::CascadeSetup{}.map_size, map_size); }
+
+std::shared_ptr<const SunInputs> render_sun_inputs(const reference::Scene& scene, int map_size,
+                                                   const reference::Receivers& view)
+{
+    auto sun = std::make_shared<SunInputs>();
+    reference::CascadeSetup setup;
+    setup.count = kDemoCascades;
+    setup.map_size = demo_cascade_size(map_size);
+    sun->cascades = reference::render_cascades(scene, 0, view, setup);
+    setup.count = 1;
+    setup.map_size = int(std::lround(setup.map_size * std::sqrt(double(kDemoCascades))));
+    CascadeShadows single = reference::render_cascades(scene, 0, view, setup);
+    sun->single = single.cascades[0];
+    sun->single_map_frame = std::make_shared<const DemoFrame>(
+        DemoFrame{scene, std::move(single.maps), {}, Image(), nullptr, nullptr, nullptr, nullptr});
+    sun->truth = reference::directional_truth(scene, 0, view);
+    return sun;
+}
+
+const Image& SunInputs::cascade_receivers(const reference::Receivers& rx) const
+{
+    const std::lock_guard<std::mutex> lock(mutex_);
+    auto found = cascade_rx_.find(&rx);
+    if (found == cascade_rx_.end()) found = cascade_rx_.emplace(&rx, reference::cascade_receivers(rx)).first;
+    return found->second;
+}
+
+// light_uvz in the single map's frame: u = dot(p, axis_u) u_scale + u_offset,
+// v and z alike (penumbra/cascades.h).
+const reference::Receivers& SunInputs::single_map_receivers(const reference::Receivers& rx) const
+{
+    const std::lock_guard<std::mutex> lock(mutex_);
+    auto found = single_rx_.find(&rx);
+    if (found != single_rx_.end()) return found->second;
+    reference::Receivers out;
+    out.light_uvz = Image(rx.width(), rx.height(), 3);
+    const auto project = [&](const std::array<float, 3>& axis, float scale, float offset, int x, int y) {
+        const double along = axis[0] * rx.world_position.at(0, x, y) + axis[1] * rx.world_position.at(1, x, y) +
+                             axis[2] * rx.world_position.at(2, x, y);
+        return float(along * scale + offset);
+    };
+    for (int y = 0; y < rx.height(); ++y)
+        for (int x = 0; x < rx.width(); ++x) {
+            out.light_uvz.at(0, x, y) = project(cascades.axis_u, single.u_scale, single.u_offset, x, y);
+            out.light_uvz.at(1, x, y) = project(cascades.axis_v, single.v_scale, single.v_offset, x, y);
+            out.light_uvz.at(2, x, y) = project(cascades.axis_z, single.z_scale, single.z_offset, x, y);
+        }
+    return single_rx_.emplace(&rx, std::move(out)).first->second;
+}
+
 int demo_deep_map_size(int map_size) { return std::clamp(map_size / 2, 1, 512); }
 
 int demo_pismo_map_size(int map_size) { return std::clamp(map_size / 2, 64, 512); }
@@ -377,7 +521,8 @@ std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size
     MethodSettings msm_soft_base;
     msm_soft_base.depth_bias = kDemoMsmDepthBias;
     msm_soft_base.plane_bias = kDemoMsmSoftPlaneBias;
-    return {vsm,
+    const DemoMethod pcf = table_method("pcf", pcf_sweep()), pcf_gauss = table_method("pcf-gauss", pcf_gauss_sweep());
+    std::vector<DemoMethod> methods{vsm,
             blurred_method(vsm, "vsm+blur", vsm_small_radii),
             table_method("vssm", light_sweep(sized, map_size)),
             table_method("msm", radius_sweep(kDemoMsmDepthBias)),
@@ -389,13 +534,28 @@ std::vector<DemoMethod> demo_methods(const reference::Scene& scene, int map_size
             sdf_grid,
             blurred_method(sdf_grid, "sdf+blur", sdf_inner),
             sdf_method(scene, map_size, light, SdfSource::Analytic),
-            table_method("pcf", pcf_sweep()),
-            table_method("pcf-gauss", pcf_gauss_sweep()),
+            pcf,
+            pcf_gauss,
             pcf_disc,
             blurred_method(pcf_disc, "pcf-disc+blur", disc_few_taps),
             deep_method(),
             pismo_method("pismo", {32, 128}),
             pismo_method("pismo-maxdepth", {32})};
+    // ssao-vo's truth takes the primitives as solids: the opaque scenes only
+    // (a fog box or a sheet of opacity 0.3 is no solid).
+    const std::vector<std::string> opaque = reference::builtin_scene_names(reference::SceneSet::Opaque);
+    if (std::find(opaque.begin(), opaque.end(), scene.name) != opaque.end()) {
+        const DemoMethod ssao = ssao_method();
+        methods.push_back(ssao);
+        methods.push_back(blurred_method(ssao, "ssao-vo+blur", {0, 1, 2, 3}, ssao_blur_options()));
+    }
+    // The cascaded pipeline against one map of the same light (the sun),
+    // shaded by the percentage-closer rows, where the scene has a sun.
+    if (!scene.directional_lights.empty()) {
+        methods.push_back(cascades_method());
+        for (const DemoMethod* source : {&pcf, &pcf_gauss, &pcf_disc}) methods.push_back(single_map_method(*source));
+    }
+    return methods;
 }
 
 }  // namespace penumbra::cli

@@ -4,10 +4,13 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
+#include "penumbra/cascades.h"
 #include "penumbra/context.h"
 #include "penumbra/deep_shadow_map.h"
 #include "penumbra/image.h"
@@ -17,6 +20,46 @@
 #include "penumbra/reference/scene.h"
 
 namespace penumbra::cli {
+
+// What a method's rows are scored against. The shadow rows estimate the
+// visibility of the scene's own light; the ssao-vo rows another quantity
+// (obscurance), the cascaded rows another light (the scene's first
+// directional light, the sun): each kind has its own chart panels and table.
+enum class DemoTruth {
+    Shadow,      // the frame's truth: the scene's area (or point) light
+    Obscurance,  // volumetric obscurance, ball of SsaoOptions{}.radius (reference/obscurance_truth.h)
+    Sun,         // the hard shadow of directional light 0 (reference/cascades.h)
+};
+const char* truth_name(DemoTruth truth);  // "shadow", "obscurance", "sun": the CSV's `truth` column
+
+// The sun's inputs, rendered once per scene (the frames move only the scene's
+// own light, so every frame shares them) when a wanted method reads them: the
+// cascades, one map of the same light at their total texels, and the truth.
+struct DemoFrame;
+struct SunInputs {
+    CascadeShadows cascades;  // kDemoCascades of demo_cascade_size, fitted to the view
+    // One cascade of sqrt(kDemoCascades) x the side (the same texels), fitted
+    // to the whole view, as a frame whose shadow map it is: the shadow-map
+    // methods read it as they read the scene's own.
+    CascadeFrame single;
+    std::shared_ptr<const DemoFrame> single_map_frame;
+    Image truth;              // reference::directional_truth on the view
+    // The receivers' light-space forms, derived once per receiver set (a
+    // frame's view, the timed frame; they outlive the scene's run) when first
+    // shaded, i.e. in the untimed scoring or warm-up: the renderer derives
+    // light_uvz for the other rows untimed too.
+    const Image& cascade_receivers(const reference::Receivers& rx) const;
+    const reference::Receivers& single_map_receivers(const reference::Receivers& rx) const;
+
+private:
+    mutable std::mutex mutex_;
+    mutable std::map<const reference::Receivers*, Image> cascade_rx_;
+    mutable std::map<const reference::Receivers*, reference::Receivers> single_rx_;
+};
+inline constexpr int kDemoCascades = 3;  // the notes' count, reference::CascadeSetup's default
+int demo_cascade_size(int map_size);     // the notes' 640, at most the demo's map size
+std::shared_ptr<const SunInputs> render_sun_inputs(const reference::Scene& scene, int map_size,
+                                                   const reference::Receivers& view);
 
 struct DemoFrame {
     reference::Scene scene;            // this frame's scene (the light may be shifted)
@@ -30,6 +73,10 @@ struct DemoFrame {
     // timed, as the shadow map's render is not) only when a wanted method
     // reads them; null otherwise.
     std::shared_ptr<const PismoMapSet> pismo_maps;
+    // The volumetric-obscurance truth and the sun's inputs, rendered only
+    // when a wanted method is scored against them (shared by the frames).
+    std::shared_ptr<const Image> obscurance_truth;
+    std::shared_ptr<const SunInputs> sun;
 };
 
 // What a setting's per-map step made for its per-receiver step (a method's
@@ -54,6 +101,7 @@ struct DemoMethod {
     std::vector<DemoSetting> settings;
     int preview_setting = 0;           // index into settings: the one whose images the demo writes
     MethodInput input = MethodInput::ShadowMap;  // what its settings read from a frame
+    DemoTruth truth = DemoTruth::Shadow;          // what its rows are scored against
 };
 
 // The deep map the demo renders per frame for a method that reads one: half

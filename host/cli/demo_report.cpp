@@ -1,7 +1,9 @@
 #include "demo_report.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <utility>
 
 #include "demo_images.h"
 #include "penumbra/error.h"
@@ -44,7 +46,7 @@ void write_summary(std::ostream& html, const DemoReport& report)
 {
     html << "<h2 id=\"summary\">Summary</h2>\n<p>Per scene, the most accurate method within each time budget per "
          << escaped(report.frame)
-         << " frame (map and receivers), and overall. Methods whose RMSE is within the truth's noise of the pick are "
+         << " frame (map and receivers), and overall, among the rows of the scene's light. Methods whose RMSE is within the truth's noise of the pick are "
             "named with it: the truth cannot tell them apart.</p>\n<table><tr><th>scene</th><th>truth noise</th>";
     const std::vector<DemoPick> none;
     for (const DemoPick& pick : report.summaries->empty() ? none : report.summaries->front().picks)
@@ -58,12 +60,25 @@ void write_summary(std::ostream& html, const DemoReport& report)
     html << "</table>\n";
 }
 
-void write_results(std::ostream& html, const DemoReport& report)
+// What each kind of row is scored against, for its table's heading.
+constexpr std::pair<DemoTruth, const char*> kResultTables[] = {
+    {DemoTruth::Shadow, "All results: visibility of the scene's light"},
+    {DemoTruth::Obscurance,
+     "ssao-vo: volumetric obscurance o against its truth (another quantity: 1/2 on a plane, no light)"},
+    {DemoTruth::Sun, "The sun: cascades against one map of the same texels, against the directional light's hard "
+                     "shadow"},
+};
+
+void write_results(std::ostream& html, const DemoReport& report, DemoTruth truth, const char* heading)
 {
-    html << "<h2 id=\"results\">All results</h2>\n<table><tr><th>scene</th><th>method</th><th>setting</th>"
+    if (std::none_of(report.rows->begin(), report.rows->end(), [truth](const DemoRow& r) { return r.truth == truth; }))
+        return;
+    html << "<h2 id=\"results-" << truth_name(truth) << "\">" << escaped(heading)
+         << "</h2>\n<table><tr><th>scene</th><th>method</th><th>setting</th>"
             "<th>map ms</th><th>receiver ms</th><th>frame ms</th><th>min-max ms</th><th>RMSE</th><th>p99</th>"
             "<th>leak</th><th>overdark</th><th>flicker</th></tr>\n";
     for (const DemoRow& r : *report.rows) {
+        if (r.truth != truth) continue;
         html << "<tr><td>" << escaped(r.scene) << "</td><td>" << escaped(r.method) << "</td><td>" << escaped(r.setting)
              << "</td><td>" << number("%.3g", r.time.map_ms) << "</td><td>" << number("%.3g", r.time.receiver_ms)
              << "</td><td>" << number("%.3g", r.time.frame_ms) << "</td><td>" << number("%.3g", r.time.frame_min_ms)
@@ -112,7 +127,7 @@ void write_page(std::ostream& html, const DemoReport& report)
         html << "<h2 id=\"chart\">Time against error</h2>\n<img class=\"chart\" src=\"chart.png\" alt=\"time against "
                 "error, one panel per scene\">\n";
     write_summary(html, report);
-    write_results(html, report);
+    for (const auto& [truth, heading] : kResultTables) write_results(html, report, truth, heading);
     write_pictures(html, report);
     html << "</body></html>\n";
 }

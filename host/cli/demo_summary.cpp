@@ -51,7 +51,8 @@ std::vector<SceneSummary> summarize_scenes(const std::vector<DemoRow>& rows,
     for (const auto& [scene, noise] : truth_noise) {
         std::vector<const DemoRow*> scene_rows;
         for (const DemoRow& row : rows)
-            if (row.scene == scene) scene_rows.push_back(&row);
+            if (row.scene == scene && row.truth == DemoTruth::Shadow) scene_rows.push_back(&row);
+        if (scene_rows.empty()) continue;  // only obscurance or sun rows asked for
         SceneSummary summary{scene, noise, {}};
         for (double budget : budgets_ms) summary.picks.push_back(pick(scene_rows, budget, noise));
         summary.picks.push_back(pick(scene_rows, 0.0, noise));

@@ -1,6 +1,8 @@
 // The demo's summary: per scene, the most accurate method within each time
-// budget per frame and overall, and the truth's own noise, below which two
-// methods' RMSEs cannot be told apart (such near-ties are named with the pick).
+// budget per frame and overall, among the rows scored against the scene's
+// light (DemoTruth::Shadow: the obscurance and sun rows measure other
+// things), and the truth's own noise, below which two methods' RMSEs cannot
+// be told apart (such near-ties are named with the pick).
 #pragma once
 
 #include <string>
