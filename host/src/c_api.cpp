@@ -123,6 +123,7 @@ penumbra::Backend backend_of(penumbra_backend backend)
     case PENUMBRA_BACKEND_SIMD: return penumbra::Backend::Simd;
     case PENUMBRA_BACKEND_OPENCL: return penumbra::Backend::OpenCL;
     case PENUMBRA_BACKEND_SCALAR: return penumbra::Backend::Scalar;
+    case PENUMBRA_BACKEND_MAX_ENUM: break;  // the range marker (penumbra.h), not a backend
     }
     throw Error(ErrorCategory::InvalidArgument, "penumbra_context_create", "backend",
                 "the backend " + std::to_string(int(backend)) + " is none of PENUMBRA_BACKEND_AUTO, _SIMD, _OPENCL, _SCALAR");
@@ -169,6 +170,7 @@ const char* penumbra_status_name(penumbra_status status)
     case PENUMBRA_BACKEND: return "backend failure";
     case PENUMBRA_OUT_OF_MEMORY: return "out of memory";
     case PENUMBRA_INTERNAL: return "internal error";
+    case PENUMBRA_STATUS_MAX_ENUM: break;
     }
     return "unknown status";
 }

@@ -166,6 +166,8 @@ static void bad_input(penumbra_context* context)
     penumbra_context* none = NULL;
     expect_failure(penumbra_context_create((penumbra_backend)42, &none), PENUMBRA_INVALID_ARGUMENT, "backend", "42",
                    "an unknown backend");
+    expect_failure(penumbra_context_create(PENUMBRA_BACKEND_MAX_ENUM, &none), PENUMBRA_INVALID_ARGUMENT, "backend",
+                   "2147483647", "the range marker, not a backend");
     CHECK(none == NULL, "a failed context_create leaves the handle NULL");
 
     CHECK(penumbra_method_create("vsm", NULL, NULL, 0, &method) == PENUMBRA_OK, "vsm: %s", penumbra_last_error());

@@ -22,6 +22,14 @@
 extern "C" {
 #endif
 
+/* Every enum ends in a _MAX_ENUM of 0x7FFFFFFF, as Vulkan's do: C has no
+ * fixed underlying type before C23, and without it a value the caller casts
+ * (say (penumbra_backend)42) lies outside the type's range, so reading it in
+ * the library would be undefined (UBSan reports it) before it could be
+ * refused. With it, every int from 0 up is a value of the type, and the
+ * library refuses the ones it does not know with PENUMBRA_INVALID_ARGUMENT.
+ * The _MAX_ENUM values themselves are never valid arguments. */
+
 /* The categories of penumbra::Error (penumbra/error.h), then failures the C++
  * API reports by other exceptions. */
 typedef enum {
@@ -32,18 +40,24 @@ typedef enum {
     PENUMBRA_UNAVAILABLE = 4,      /* the backend, ISA or device does not exist here */
     PENUMBRA_BACKEND = 5,          /* an OpenCL call or program build failed */
     PENUMBRA_OUT_OF_MEMORY = 6,
-    PENUMBRA_INTERNAL = 7          /* a defect: please report it with the message */
+    PENUMBRA_INTERNAL = 7,         /* a defect: please report it with the message */
+    PENUMBRA_STATUS_MAX_ENUM = 0x7FFFFFFF
 } penumbra_status;
 
 typedef enum {
     PENUMBRA_BACKEND_AUTO = 0, /* PENUMBRA_BACKEND, else a GPU if any, else SIMD (penumbra/context.h) */
     PENUMBRA_BACKEND_SIMD = 1,
     PENUMBRA_BACKEND_OPENCL = 2,
-    PENUMBRA_BACKEND_SCALAR = 3
+    PENUMBRA_BACKEND_SCALAR = 3,
+    PENUMBRA_BACKEND_MAX_ENUM = 0x7FFFFFFF
 } penumbra_backend;
 
-typedef enum { PENUMBRA_FLOAT32 = 0, PENUMBRA_UINT16 = 1 /* value / 65535; inputs only */ } penumbra_pixel_type;
-typedef enum { PENUMBRA_PLANAR = 0, PENUMBRA_INTERLEAVED = 1 } penumbra_layout;
+typedef enum {
+    PENUMBRA_FLOAT32 = 0,
+    PENUMBRA_UINT16 = 1, /* value / 65535; inputs only */
+    PENUMBRA_PIXEL_TYPE_MAX_ENUM = 0x7FFFFFFF
+} penumbra_pixel_type;
+typedef enum { PENUMBRA_PLANAR = 0, PENUMBRA_INTERLEAVED = 1, PENUMBRA_LAYOUT_MAX_ENUM = 0x7FFFFFFF } penumbra_layout;
 
 /* The caller's memory (penumbra/image_view.h): pitches in bytes, 0 for
  * packed rows (and planes of height x row_pitch). */
@@ -94,8 +108,16 @@ penumbra_status penumbra_shade(penumbra_context* context, const penumbra_method*
                                const penumbra_output_view* out);
 
 /* The cross-bilateral blur's options (penumbra/bilateral.h, BilateralOptions). */
-typedef enum { PENUMBRA_RANGE_GAUSSIAN = 0, PENUMBRA_RANGE_THRESHOLD = 1 } penumbra_blur_range;
-typedef enum { PENUMBRA_WINDOW_SQUARE = 0, PENUMBRA_WINDOW_DISK = 1 } penumbra_blur_window;
+typedef enum {
+    PENUMBRA_RANGE_GAUSSIAN = 0,
+    PENUMBRA_RANGE_THRESHOLD = 1,
+    PENUMBRA_BLUR_RANGE_MAX_ENUM = 0x7FFFFFFF
+} penumbra_blur_range;
+typedef enum {
+    PENUMBRA_WINDOW_SQUARE = 0,
+    PENUMBRA_WINDOW_DISK = 1,
+    PENUMBRA_BLUR_WINDOW_MAX_ENUM = 0x7FFFFFFF
+} penumbra_blur_window;
 typedef struct {
     int radius;
     float spatial_sigma;
