@@ -6,14 +6,13 @@
 // receivers and maps are rendered once, untimed (tests/support/cascade_cases.h).
 // Counter: pixels/s. docs/cascades.md has the command and the figures.
 #include <benchmark/benchmark.h>
-#include <tbb/task_arena.h>
 
-#include <exception>
 #include <string>
 
 #include "bench_inputs.h"
 #include "penumbra/cascades.h"
 #include "support/cascade_cases.h"
+#include "timed_loop.h"
 
 namespace penumbra::bench {
 namespace {
@@ -22,28 +21,18 @@ constexpr int kWidth = 1280, kHeight = 720;
 
 void run(benchmark::State& state, const std::string& backend, CascadeSelection selection, int threads)
 {
-    auto body = [&] {
-        try {
-            Context& ctx = context(backend);
-            state.SetLabel(ctx.description());
-            const auto& c = testing::cascade_case("contact", 0, kWidth, kHeight);
-            CascadeOptions o;
-            o.selection = selection;
-            Image out(kWidth, kHeight, 2);
-            cascade_mask(ctx, c.shadows, c.rx, o, out);  // untimed: PoCL's JIT, first touch
-            for (auto _ : state) {
-                cascade_mask(ctx, c.shadows, c.rx, o, out);
-                benchmark::DoNotOptimize(out.plane(0));
-            }
-            state.counters["pixels/s"] =
-                benchmark::Counter(double(state.iterations()) * kWidth * kHeight, benchmark::Counter::kIsRate);
-        } catch (const std::exception& e) {
-            state.SkipWithError(e.what());
-        }
-    };
-    if (threads <= 0) return body();
-    tbb::task_arena arena(threads);
-    arena.execute(body);
+    const testing::CascadeCase* c = nullptr;  // rendered on the first (untimed) call, inside timed_loop's try
+    CascadeOptions o;
+    o.selection = selection;
+    Image out(kWidth, kHeight, 2);
+    const bool ran = timed_loop(state, backend, threads, [&](Context& ctx) {
+        if (!c) c = &testing::cascade_case("contact", 0, kWidth, kHeight);
+        cascade_mask(ctx, c->shadows, c->rx, o, out);
+        benchmark::DoNotOptimize(out.plane(0));
+    });
+    if (ran)
+        state.counters["pixels/s"] =
+            benchmark::Counter(double(state.iterations()) * kWidth * kHeight, benchmark::Counter::kIsRate);
 }
 
 [[maybe_unused]] const bool registered = [] {

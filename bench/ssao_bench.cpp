@@ -6,10 +6,8 @@
 // own budget (Xbox 360 GPU, 720p): shadow mask 3 ms, blur 2 ms;
 // docs/ssao.md has the command and the figures beside it.
 #include <benchmark/benchmark.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <exception>
 #include <string>
 #include <vector>
 
@@ -17,6 +15,7 @@
 #include "penumbra/reference/render.h"
 #include "penumbra/reference/scene.h"
 #include "penumbra/ssao.h"
+#include "timed_loop.h"
 
 namespace penumbra::bench {
 namespace {
@@ -35,14 +34,6 @@ const Image& view_depth()
     return depth;
 }
 
-template <class Fn>
-void in_arena(int threads, Fn&& fn)
-{
-    if (threads <= 0) return fn();
-    tbb::task_arena arena(threads);
-    arena.execute(fn);
-}
-
 void set_rates(benchmark::State& state)
 {
     const double pixels = double(kWidth) * kHeight * double(state.iterations());
@@ -53,29 +44,20 @@ void set_rates(benchmark::State& state)
 // step: "obscurance" (ssao_obscurance) or "blur" (cross_bilateral of its output).
 void run(benchmark::State& state, const std::string& backend, const std::string& step, int threads)
 {
-    try {
-        Context& ctx = context(backend);
-        state.SetLabel(ctx.description());
+    const SsaoOptions options;
+    const BilateralOptions blur = ssao_blur_options();
+    Image ao(kWidth, kHeight, 1), blurred(kWidth, kHeight, 1);
+    bool have_ao = false;  // the blur's input, made on the first (untimed) call
+    const bool ran = timed_loop(state, backend, threads, [&](Context& ctx) {
         const Image& depth = view_depth();
-        const SsaoOptions options;
         const double fov = scene().view.fov_degrees;
-        Image ao(kWidth, kHeight, 1), blurred(kWidth, kHeight, 1);
-        const BilateralOptions blur = ssao_blur_options();
-        in_arena(threads, [&] {
-            ssao_obscurance(ctx, depth, fov, options, ao);  // untimed: PoCL's JIT, first touch
-            cross_bilateral(ctx, ao, depth, blur, blurred);
-            for (auto _ : state) {
-                if (step == "obscurance") ssao_obscurance(ctx, depth, fov, options, ao);
-                else cross_bilateral(ctx, ao, depth, blur, blurred);
-                benchmark::DoNotOptimize(ao.plane(0));
-                benchmark::DoNotOptimize(blurred.plane(0));
-                benchmark::ClobberMemory();
-            }
-        });
-        set_rates(state);
-    } catch (const std::exception& e) {
-        state.SkipWithError(e.what());
-    }
+        if (step == "obscurance" || !have_ao) ssao_obscurance(ctx, depth, fov, options, ao);
+        have_ao = true;
+        if (step == "blur") cross_bilateral(ctx, ao, depth, blur, blurred);
+        benchmark::DoNotOptimize(ao.plane(0));
+        benchmark::DoNotOptimize(blurred.plane(0));
+    });
+    if (ran) set_rates(state);
 }
 
 double fastest(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end()); }
