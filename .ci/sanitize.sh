@@ -59,6 +59,10 @@ status=0
 # run on the scalar oracle only: the same kernels meet ASan on avx512 and
 # OpenCL in every other kernel test, and the main job runs the sweeps on all.
 # (ctest names a parameterised test 'Suite.Name/param  # GetParam() = ...'.)
+# The demo's quick run (every method on every scene, 174 s under ASan, the
+# longest test here by three times) runs in the main job only: its kernels
+# meet ASan in their own tests, and the demo's host code in the other Demo
+# tests, which stay.
 # --repeat until-pass:2: a test that fails is run once more (LSan's own
 # tracer can crash at exit, below); a real failure fails twice.
 # The install tests (label install) configure and build two consumer
@@ -71,7 +75,7 @@ status=0
 # second each, LSan's tracer crashed at their exit, while PoCL's threads
 # were still starting, in both tries of four of them (docs/ci.md).
 ctest --test-dir "$build" --output-on-failure -j2 --timeout 1800 -LE 'slow|install' \
-  -E '(MomentFidelity|MomentAgreement)\..*/(sse4_2|avx2|avx512|opencl)( |$)|/opencl( |$)|^OpenClRuntime\.|^OpenClCacheRepair\.' \
+  -E '(MomentFidelity|MomentAgreement)\..*/(sse4_2|avx2|avx512|opencl)( |$)|/opencl( |$)|^OpenClRuntime\.|^OpenClCacheRepair\.|^Demo\.QuickRunCoversEveryMethodOnEverySceneWithoutNaN$' \
   --repeat until-pass:2 || status=1
 # Second pass: the OpenCL tests, with full unwinding through the driver
 # (8x slower) and suppressions by function only (lsan_precise.supp): a leak
