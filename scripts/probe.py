@@ -252,6 +252,8 @@ BLUR = ["blur", "--in", "gt.exr", "--guide", "sm_as_guide.exr", "--out", "out.ex
 SDF_SHADE = ["sdf-shade", "--grid", "grid.pnsdf", "--receivers", "rx.exr", "--out", "out.exr", "--k", "8",
              "--light-position", "0,5,0", "--backend", "simd"]
 SDF_SCENE = ["sdf-shade", "--scene", "scene.json", "--receivers", "rx.exr", "--out", "out.exr", "--backend", "simd"]
+PISMO_SHADE = ["shade", "--method", "pismo", "--scene", "scene.json", "--receivers", "rx.exr", "--out", "out.exr",
+               "--light-level", "0", "--map-size", "8", "--rays", "4", "--backend", "simd"]
 SDF_BAKE = ["sdf-bake", "--scene", "scene.json", "--out", "out.pnsdf", "--voxel", "0.5"]
 DSM_BUILD = ["dsm-build", "--scene", "scene.json", "--out", "out.exr", "--size", "16", "--samples", "4"]
 PISMO_BUILD = ["pismo-build", "--scene", "scene.json", "--out", "pismo", "--light-level", "0", "--map-size", "8"]
@@ -371,7 +373,7 @@ def exr_setup(name, change):
     return run
 
 
-EXR_TARGETS = [(SHADE, "sm.exr"), (SHADE, "rx.exr"), (BLUR, "gt.exr"), (SDF_SHADE, "rx.exr")]
+EXR_TARGETS = [(SHADE, "sm.exr"), (SHADE, "rx.exr"), (BLUR, "gt.exr"), (SDF_SHADE, "rx.exr"), (PISMO_SHADE, "rx.exr")]
 
 
 def cases_corrupt_exr(quick, rng):
@@ -466,6 +468,7 @@ VALUED = {
                     "--backend"]),
     "sdf-shade": (SDF_SHADE, ["--k", "--light-width", "--light-position", "--t-min", "--t-max", "--max-steps",
                               "--hit-epsilon", "--normal-offset", "--estimate"]),
+    "shade --method pismo": (PISMO_SHADE, ["--rays", "--light-level", "--map-size", "--layers", "--pismo-maps"]),
     "sdf-bake": (SDF_BAKE, ["--voxel", "--margin"]),
     "dsm-build": (DSM_BUILD, ["--size", "--samples", "--tolerance", "--filter", "--seed"]),
     "pismo-build": (PISMO_BUILD, ["--light-level", "--map-size", "--layers", "--receivers"]),
