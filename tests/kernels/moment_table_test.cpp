@@ -73,10 +73,10 @@ PN_BACKEND_TEST(MomentTableTest, ExactSumsMatchBruteForce)
             }
 }
 
-// The CPU build runs one column band per thread of the arena, each band a
-// block behind the one on its left (simd/cpu_moment_table.cpp). Arenas of more
-// threads than the machine's cores give more bands than running threads, so a
-// thread may run several bands in order; every count must give the same sums.
+// The CPU build cuts the map into one column band per thread of the arena and
+// runs its blocks as their left and upper neighbours finish
+// (simd/cpu_moment_table.cpp). Arenas of more threads than the machine's cores
+// give more bands than running threads; every count must give the same sums.
 PN_BACKEND_TEST(MomentTableTest, ExactSumsMatchBruteForceOnEveryThreadCount)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
