@@ -1,5 +1,6 @@
 // Summed-area tables of moments against brute-force sums, on every backend.
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -70,6 +71,28 @@ PN_BACKEND_TEST(MomentTableTest, ExactSumsMatchBruteForce)
                             << x1 << ")x[" << y0 << "," << y1 << ")";
                 });
             }
+}
+
+// The CPU build cuts the map into one column band per thread of the arena and
+// runs its blocks as their left and upper neighbours finish
+// (simd/cpu_moment_table.cpp). Arenas of more threads than the machine's cores
+// give more bands than running threads; every count must give the same sums.
+PN_BACKEND_TEST(MomentTableTest, ExactSumsMatchBruteForceOnEveryThreadCount)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    const int w = 397, h = 71;  // 2 to 4 bands of 128 to 256 columns, the last one partial; 3 row blocks
+    const Image depth = testing::random_depth(w, h, 41u);
+    for (int threads : {1, 2, 3, 5}) {
+        MomentTable table(w, h, 2, Precision::Exact, 2);
+        tbb::task_arena(threads).execute([&] { build_moment_table(ctx, depth, table); });
+        for_rectangles(w, h, 13, [&](int x0, int x1, int y0, int y1) {
+            for (int k = 1; k <= table.planes(); ++k)
+                ASSERT_EQ(table.exact_box_sum(k, x0, x1, y0, y1),
+                          testing::brute_exact_sum(depth, k, table.limbs(), x0, x1, y0, y1))
+                    << threads << " threads, plane " << k << " rect [" << x0 << "," << x1 << ")x[" << y0 << ","
+                    << y1 << ")";
+        });
+    }
 }
 
 // Depths where rounding to 32 bits is delicate: exact ties (k + 1/2) 2^-32,
