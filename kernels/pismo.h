@@ -49,8 +49,10 @@
  * surface"), with P's normal n, as the truth counts it (its rays start at P
  * lifted along n, so a ray below P's tangent plane enters P's solid):
  *   a ray to L_i with n . (L_i - P) <= 0 is blocked;
- *   a corner map k with n . (V_k - P) <= 0 occludes (its vertex sees P's
- *     solid from behind), so a ray ending at V_k is still its hard test;
+ *   a corner map k with n . (V_k - P) <= 0 sees P's solid from behind: its
+ *     hard test is "occluded" (so a ray ending at V_k is still that test),
+ *     and a ray above the plane leaves it out, the other corners' weights
+ *     renormalised (none left: lit);
  *   elsewhere map k's bias grows by min(tan theta_k, max_slope) texels,
  *     theta_k the angle between n and V_k - P: the depth P's own surface
  *     spans across one texel seen from V_k (no acne at a lit terminator).
@@ -238,11 +240,19 @@ PN_FN pn_float pismo_ray_light(PN_GLOBAL const uint* offsets, PN_GLOBAL const fl
     o.x = pn_select(estimated, lx + tx * along, q.x);
     o.y = pn_select(estimated, ly + ty * along, q.y);
     o.z = pn_select(estimated, lz + tz * along, q.z);
-    pn_float lit = 0.0f;
-    for (int j = 0; j < 3; ++j)
-        lit = lit + pn_select(pismo_occludes(offsets, depths, cameras, p, k[j], o), 0.0f, w[j]);
-    /* A ray below P's tangent plane enters P's own solid. */
-    return pn_select(pn_and(pismo_has_normal(r), pismo_facing(r, lx, ly, lz) <= 0.0f), 0.0f, lit);
+    /* A corner that sees P's own solid (k.own) does not see what this ray
+     * passes when the ray is above P's tangent plane: the other corners
+     * answer, renormalised; with none left the ray is lit. */
+    pn_float lit = 0.0f, answering = 0.0f;
+    for (int j = 0; j < 3; ++j) {
+        lit = lit + pn_select(pn_or(k[j].own, pismo_occludes(offsets, depths, cameras, p, k[j], o)), 0.0f, w[j]);
+        answering = answering + pn_select(k[j].own, 0.0f, w[j]);
+    }
+    const float all = (0.0f + w[0]) + w[1] + w[2];
+    const pn_float share = pn_select(answering > 0.0f, lit / pn_max(answering, 1e-30f), 1.0f) * all;
+    const pn_mask has_normal = pismo_has_normal(r);
+    /* Without normals no corner is own: lit as summed. A ray below P's tangent plane enters P's own solid. */
+    return pn_select(has_normal, pn_select(pismo_facing(r, lx, ly, lz) <= 0.0f, 0.0f, share), lit);
 }
 
 PN_KERNEL void pismo_visibility(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,

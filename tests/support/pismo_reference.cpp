@@ -157,10 +157,17 @@ double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoRefer
                     }
                 const Vec3 to_p = p - light;
                 const Vec3 occluder = weight > 0 ? light + to_p * (distance / weight / length(to_p)) : p;
-                double blocked = 0;
-                for (int k = 0; k < 3; ++k)
-                    blocked += w[k] * occludes(maps.test[std::size_t(corners[k])], occluder, r);
-                occlusion += share * blocked / (n * n);
+                // A corner whose vertex P's surface faces away from sees P's own
+                // solid, not what this ray (above P's tangent plane) passes: the
+                // other corners answer, renormalised; none left: the ray is lit.
+                double blocked = 0, answering = 0;
+                for (int k = 0; k < 3; ++k) {
+                    const LayeredDepthMap& map = maps.test[std::size_t(corners[k])];
+                    if (r.faces_away(vec(map.camera().position))) continue;
+                    blocked += w[k] * occludes(map, occluder, r);
+                    answering += w[k];
+                }
+                occlusion += answering > 0 ? share * blocked / answering / (n * n) : 0;
             }
     }
     return std::clamp(1 - occlusion, 0.0, 1.0);
