@@ -304,7 +304,7 @@ typedef struct {
 #define PN_PISMO_TRIANGLE_UINTS 5  /* corners a, b, c (map indices), first ray, end of its rays */
 #define PN_PISMO_RAY_FLOATS 4      /* barycentric w_a, w_b, w_c, weight */
 typedef struct {
-    pn_dims receivers;  /* planes x, y, z: world position (a chunk of the caller's rows) */
+    pn_dims receivers;  /* planes x, y, z: world position, then with `normals` the normal's x, y, z (a chunk of the caller's rows) */
     pn_dims out;        /* estimates: maps x receiver rows; visibility: one plane of the receivers' size */
     pn_dims estimates;  /* visibility: the estimates image (maps x receiver rows); unused by the estimates */
     int map_width, map_height;
@@ -312,6 +312,8 @@ typedef struct {
     int triangles;
     int last_depth;     /* max(depths - 1, 0): the depth array holds at least one element */
     float bias_texels;  /* texel footprints at the point's depth */
+    int normals;        /* 1: the receivers carry normals, and their own surface takes part (kernels/pismo.h) */
+    float max_slope;    /* with normals: the slope term's cap, texels */
 } PismoParams;
 
 #ifdef __cplusplus

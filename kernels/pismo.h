@@ -44,6 +44,18 @@
  * A point outside a map sees no caster there: no estimate, no occlusion.
  * The bias is bias_texels texel footprints at the point's depth d,
  * bias_texels 2 tan(fov/2) d / W.
+ *
+ * The receiver's own surface (p.normals; docs/pismo.md, "The receiver's own
+ * surface"), with P's normal n, as the truth counts it (its rays start at P
+ * lifted along n, so a ray below P's tangent plane enters P's solid):
+ *   a ray to L_i with n . (L_i - P) <= 0 is blocked;
+ *   a corner map k with n . (V_k - P) <= 0 sees P's solid from behind: its
+ *     hard test is "occluded" (so a ray ending at V_k is still that test),
+ *     and a ray above the plane leaves it out, the other corners' weights
+ *     renormalised (none left: lit);
+ *   elsewhere map k's bias grows by min(tan theta_k, max_slope) texels,
+ *     theta_k the angle between n and V_k - P: the depth P's own surface
+ *     spans across one texel seen from V_k (no acne at a lit terminator).
  */
 #ifndef PENUMBRA_PISMO_H
 #define PENUMBRA_PISMO_H
@@ -52,6 +64,11 @@ typedef struct {
     pn_float x, y, z;
 } PismoPoint;
 
+/* A shading point: its position and its normal (zero without p.normals). */
+typedef struct {
+    PismoPoint p, n;
+} PismoReceiver;
+
 /* Where a point lands in one map. */
 typedef struct {
     pn_int pixel;   /* index into the offsets (clamped into the map: valid to gather) */
@@ -59,7 +76,7 @@ typedef struct {
     pn_mask inside;
 } PismoLanding;
 
-PN_FN PismoLanding pismo_land(PN_GLOBAL const float* cameras, PismoParams p, int map, PismoPoint q)
+PN_FN PismoLanding pismo_land(PN_GLOBAL const float* cameras, PismoParams p, int map, PismoPoint q, pn_float bias_texels)
 {
     PN_GLOBAL const float* c = cameras + PN_PISMO_CAMERA_FLOATS * map;
     const pn_float lx = q.x - c[0], ly = q.y - c[1], lz = q.z - c[2];
@@ -76,17 +93,50 @@ PN_FN PismoLanding pismo_land(PN_GLOBAL const float* cameras, PismoParams p, int
     const pn_int iy = pn_to_int(pn_select(at.inside, row, 0.0f));
     at.pixel = ix + iy * p.map_width + map * (p.map_width * p.map_height);
     const pn_float depth = pn_sqrt(lx * lx + ly * ly + lz * lz);
-    at.limit = depth - p.bias_texels * (c[13] * depth);
+    at.limit = depth - bias_texels * (c[13] * depth);
     return at;
 }
 
-PN_FN PismoPoint pismo_receiver(PN_GLOBAL const float* receivers, PismoParams p, int y, PN_GLOBAL int* bad_rows,
-                                int x)
+/* n . (t - P): <= 0 where the receiver's own surface faces away from t
+ * (0 without normals, so no own-surface rule: the masks below need n != 0). */
+PN_FN pn_float pismo_facing(PismoReceiver r, float tx, float ty, float tz)
 {
-    PismoPoint r;
-    r.x = load_checked_plane(receivers, p.receivers, 0, x, y, bad_rows);
-    r.y = load_checked_plane(receivers, p.receivers, 1, x, y, bad_rows);
-    r.z = load_checked_plane(receivers, p.receivers, 2, x, y, bad_rows);
+    return r.n.x * (tx - r.p.x) + r.n.y * (ty - r.p.y) + r.n.z * (tz - r.p.z);
+}
+
+PN_FN pn_mask pismo_has_normal(PismoReceiver r)
+{
+    return r.n.x * r.n.x + r.n.y * r.n.y + r.n.z * r.n.z > 0.0f;
+}
+
+/* Map `map`'s bias in texels at r: bias_texels, plus min(tan theta, max_slope)
+ * where r's surface faces the map's vertex. */
+PN_FN pn_float pismo_bias(PN_GLOBAL const float* cameras, PismoParams p, int map, PismoReceiver r)
+{
+    PN_GLOBAL const float* c = cameras + PN_PISMO_CAMERA_FLOATS * map;
+    const pn_float facing = pismo_facing(r, c[0], c[1], c[2]);
+    const pn_float tx = c[0] - r.p.x, ty = c[1] - r.p.y, tz = c[2] - r.p.z;
+    const pn_float scale = pn_sqrt((tx * tx + ty * ty + tz * tz) * (r.n.x * r.n.x + r.n.y * r.n.y + r.n.z * r.n.z));
+    const pn_float cosine = pn_select(facing > 0.0f, facing / pn_max(scale, 1e-30f), 1.0f);
+    const pn_float tangent = pn_sqrt(pn_max(1.0f - cosine * cosine, 0.0f)) / pn_max(cosine, 1e-6f);
+    return p.bias_texels + pn_select(pn_and(pismo_has_normal(r), facing > 0.0f), pn_min(tangent, p.max_slope), 0.0f);
+}
+
+PN_FN PismoReceiver pismo_receiver(PN_GLOBAL const float* receivers, PismoParams p, int y, PN_GLOBAL int* bad_rows,
+                                   int x)
+{
+    PismoReceiver r;
+    r.p.x = load_checked_plane(receivers, p.receivers, 0, x, y, bad_rows);
+    r.p.y = load_checked_plane(receivers, p.receivers, 1, x, y, bad_rows);
+    r.p.z = load_checked_plane(receivers, p.receivers, 2, x, y, bad_rows);
+    r.n.x = 0.0f;
+    r.n.y = 0.0f;
+    r.n.z = 0.0f;
+    if (p.normals) {
+        r.n.x = load_checked_plane(receivers, p.receivers, 3, x, y, bad_rows);
+        r.n.y = load_checked_plane(receivers, p.receivers, 4, x, y, bad_rows);
+        r.n.z = load_checked_plane(receivers, p.receivers, 5, x, y, bad_rows);
+    }
     return r;
 }
 
@@ -117,8 +167,9 @@ PN_KERNEL void pismo_estimates(PN_GLOBAL const uint* offsets, PN_GLOBAL const fl
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
     const int rows = p.receivers.height;
-    const PismoPoint q = pismo_receiver(receivers, p, pn_y % rows, bad_rows, pn_x);
-    const PismoLanding at = pismo_land(cameras, p, pn_y / rows, q);
+    const PismoReceiver r = pismo_receiver(receivers, p, pn_y % rows, bad_rows, pn_x);
+    const int map = pn_y / rows;
+    const PismoLanding at = pismo_land(cameras, p, map, r.p, pismo_bias(cameras, p, map, r));
     pn_store(out, p.out, pn_x, pn_y, pismo_nearest_occluder(offsets, depths, p, at));
 }
 
@@ -128,11 +179,13 @@ typedef struct {
     float vx, vy, vz;  /* the vertex */
     pn_float estimate; /* D_k, or -1 */
     pn_float limit;    /* |P - V_k| minus the bias */
+    pn_float bias;     /* the bias there, texels */
     pn_mask p_inside;  /* P lands in map k */
+    pn_mask own;       /* P's own solid occludes V_k (its surface faces away from it) */
 } PismoCorner;
 
 PN_FN PismoCorner pismo_corner(PN_GLOBAL const float* cameras, PN_GLOBAL const float* estimates, PismoParams p,
-                               int map, PismoPoint q, int x, int y)
+                               int map, PismoReceiver r, int x, int y)
 {
     PismoCorner k;
     PN_GLOBAL const float* c = cameras + PN_PISMO_CAMERA_FLOATS * map;
@@ -141,32 +194,36 @@ PN_FN PismoCorner pismo_corner(PN_GLOBAL const float* cameras, PN_GLOBAL const f
     k.vy = c[1];
     k.vz = c[2];
     k.estimate = pn_load(estimates, p.estimates, x, map * p.receivers.height + y);
-    const PismoLanding at = pismo_land(cameras, p, map, q);
+    k.bias = pismo_bias(cameras, p, map, r);
+    const PismoLanding at = pismo_land(cameras, p, map, r.p, k.bias);
     k.limit = at.limit;
     k.p_inside = at.inside;
+    k.own = pn_and(pismo_has_normal(r), pismo_facing(r, k.vx, k.vy, k.vz) <= 0.0f);
     return k;
 }
 
 /* o_k: whether test map k holds, at o's pixel, a layer nearer than P's limit
- * there (its nearest layer is enough: any nearer layer implies it). */
+ * there (its nearest layer is enough: any nearer layer implies it), or P's
+ * own solid occludes V_k. */
 PN_FN pn_mask pismo_occludes(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
                              PN_GLOBAL const float* cameras, PismoParams p, PismoCorner k, PismoPoint o)
 {
-    const PismoLanding at = pismo_land(cameras, p, k.map, o);
+    const PismoLanding at = pismo_land(cameras, p, k.map, o, k.bias);
     pn_uint first, second;
     pn_ugather_pair(offsets, at.pixel, &first, &second);
     const pn_int begin = pn_uint_to_index(first);
     const pn_float front = pn_gather(depths, pn_imin(begin, p.last_depth));
     const pn_mask holds = pn_and(pn_and(at.inside, k.p_inside), pn_iless(begin, pn_uint_to_index(second)));
-    return pn_and(holds, front < k.limit);
+    return pn_or(k.own, pn_and(holds, front < k.limit));
 }
 
 /* The lit share of one ray, sum of w_k (1 - o_k), weights w (uniform: the
  * pattern is the same for every receiver, so L_i is too). */
 PN_FN pn_float pismo_ray_light(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
                                    PN_GLOBAL const float* cameras, PismoParams p, const PismoCorner* k,
-                                   PN_GLOBAL const float* w, PismoPoint q)
+                                   PN_GLOBAL const float* w, PismoReceiver r)
 {
+    const PismoPoint q = r.p;
     const float lx = w[0] * k[0].vx + w[1] * k[1].vx + w[2] * k[2].vx;
     const float ly = w[0] * k[0].vy + w[1] * k[1].vy + w[2] * k[2].vy;
     const float lz = w[0] * k[0].vz + w[1] * k[1].vz + w[2] * k[2].vz;
@@ -183,10 +240,19 @@ PN_FN pn_float pismo_ray_light(PN_GLOBAL const uint* offsets, PN_GLOBAL const fl
     o.x = pn_select(estimated, lx + tx * along, q.x);
     o.y = pn_select(estimated, ly + ty * along, q.y);
     o.z = pn_select(estimated, lz + tz * along, q.z);
-    pn_float lit = 0.0f;
-    for (int j = 0; j < 3; ++j)
-        lit = lit + pn_select(pismo_occludes(offsets, depths, cameras, p, k[j], o), 0.0f, w[j]);
-    return lit;
+    /* A corner that sees P's own solid (k.own) does not see what this ray
+     * passes when the ray is above P's tangent plane: the other corners
+     * answer, renormalised; with none left the ray is lit. */
+    pn_float lit = 0.0f, answering = 0.0f;
+    for (int j = 0; j < 3; ++j) {
+        lit = lit + pn_select(pn_or(k[j].own, pismo_occludes(offsets, depths, cameras, p, k[j], o)), 0.0f, w[j]);
+        answering = answering + pn_select(k[j].own, 0.0f, w[j]);
+    }
+    const float all = (0.0f + w[0]) + w[1] + w[2];
+    const pn_float share = pn_select(answering > 0.0f, lit / pn_max(answering, 1e-30f), 1.0f) * all;
+    const pn_mask has_normal = pismo_has_normal(r);
+    /* Without normals no corner is own: lit as summed. A ray below P's tangent plane enters P's own solid. */
+    return pn_select(has_normal, pn_select(pismo_facing(r, lx, ly, lz) <= 0.0f, 0.0f, share), lit);
 }
 
 PN_KERNEL void pismo_visibility(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
@@ -196,7 +262,7 @@ PN_KERNEL void pismo_visibility(PN_GLOBAL const uint* offsets, PN_GLOBAL const f
                                 const PismoParams p, PN_PIXEL_ARGS)
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const PismoPoint q = pismo_receiver(receivers, p, pn_y, bad_rows, pn_x);
+    const PismoReceiver q = pismo_receiver(receivers, p, pn_y, bad_rows, pn_x);
     /* Lit rays over all rays, both summed in the same order, so that a point
      * that every ray reaches is exactly 1 and one that none reaches exactly 0
      * (the float32 weights sum to 1 only within a rounding). */

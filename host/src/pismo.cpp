@@ -75,8 +75,9 @@ void check_maps(const std::vector<std::array<double, 3>>& vertices, const std::v
 
 void check_receivers(const Image& receivers, const Image& out)
 {
-    require(receivers.channels() >= 3 && !receivers.empty(), kOperation, "receivers",
-            "the receivers need channels x, y, z, world positions (got " + std::to_string(receivers.channels()) +
+    require((receivers.channels() == 3 || receivers.channels() == 6) && !receivers.empty(), kOperation, "receivers",
+            "the receivers need channels x, y, z, world positions, and optionally then the normal's x, y, z (got " +
+                std::to_string(receivers.channels()) +
                 " channels, " + std::to_string(receivers.width()) + "x" + std::to_string(receivers.height()) + ")");
     require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), kOperation,
             "out",
@@ -84,11 +85,11 @@ void check_receivers(const Image& receivers, const Image& out)
                 std::to_string(receivers.height()) + ")");
 }
 
-// Rows y0 .. y0 + rows - 1 of the receivers' x, y, z planes.
+// Rows y0 .. y0 + rows - 1 of the receivers' planes (positions, and normals if given).
 Image receiver_rows(const Image& receivers, int y0, int rows)
 {
-    Image chunk(receivers.width(), rows, 3, Image::Uninitialized{});
-    for (int c = 0; c < 3; ++c)
+    Image chunk(receivers.width(), rows, receivers.channels(), Image::Uninitialized{});
+    for (int c = 0; c < receivers.channels(); ++c)
         for (int y = 0; y < rows; ++y)
             std::memcpy(chunk.row(c, y), receivers.row(c, y0 + y), sizeof(float) * std::size_t(receivers.width()));
     return chunk;
@@ -101,7 +102,7 @@ struct Prepared {
     PismoParams params{};
 };
 
-Prepared prepare(const PismoMaps& maps, detail::PismoRayTable rays, float bias_texels)
+Prepared prepare(const PismoMaps& maps, detail::PismoRayTable rays, float bias_texels, bool normals)
 {
     Prepared s{*maps.arrays(), std::move(rays), PismoParams{}};
     s.params.map_width = s.maps.width;
@@ -109,6 +110,8 @@ Prepared prepare(const PismoMaps& maps, detail::PismoRayTable rays, float bias_t
     s.params.maps = int(maps.vertices().size());
     s.params.triangles = int(s.rays.triangles.size() / PN_PISMO_TRIANGLE_UINTS);
     s.params.bias_texels = bias_texels;
+    s.params.normals = normals ? 1 : 0;
+    s.params.max_slope = kPismoMaxSlopeTexels;
     return s;
 }
 
@@ -199,7 +202,7 @@ void detail::pismo_shade_rays(Context& context, const PismoMaps& maps, PismoRayT
 {
     require_maps(!maps.empty(), "no maps: build PismoMaps from a light mesh and its vertices' layered maps first");
     check_receivers(receivers, out);
-    const Prepared s = prepare(maps, std::move(rays), bias_texels);
+    const Prepared s = prepare(maps, std::move(rays), bias_texels, receivers.channels() == 6);
     const std::size_t row_bytes = sizeof(float) * std::size_t(receivers.width()) * std::size_t(s.params.maps);
     const int rows = int(std::clamp<std::size_t>(estimate_bytes / row_bytes, 1, std::size_t(receivers.height())));
     for (int y0 = 0; y0 < receivers.height(); y0 += rows) {

@@ -118,6 +118,84 @@ PN_BACKEND_TEST(Pismo, AgreesWithTheFloat64ReferenceReceiverByReceiver)
             }
 }
 
+// The receivers' positions and normals, 6 planes: the receiver's own surface takes part.
+Image with_normals(const reference::Receivers& rx)
+{
+    Image out(rx.width(), rx.height(), 6);
+    for (int y = 0; y < rx.height(); ++y)
+        for (int x = 0; x < rx.width(); ++x)
+            for (int c = 0; c < 3; ++c) {
+                out.at(c, x, y) = rx.world_position.at(c, x, y);
+                out.at(3 + c, x, y) = rx.normal.at(c, x, y);
+            }
+    return out;
+}
+
+Vec3 normal_of(const Image& rx6, int x, int y) { return {rx6.at(3, x, y), rx6.at(4, x, y), rx6.at(5, x, y)}; }
+
+// The same with normals (kernels/pismo.h, the receiver's own surface). A
+// slope-scaled bias puts more limits within a rounding of a layer, so the
+// flips are counted as above.
+PN_BACKEND_TEST(Pismo, WithNormalsAgreesWithTheFloat64ReferenceReceiverByReceiver)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    for (const char* name : {"contact", "overlap"}) {
+        const Case& c = scene_case(name, 1);
+        const auto ref = testing::PismoReferenceMaps::layered(c.maps);
+        const Image rx6 = with_normals(c.receivers);
+        PismoOptions o;
+        o.rays = 48;
+        const Image got = pismo_shade(ctx, library_maps(c.maps), rx6, o);
+        testing::PismoReferenceOptions ro;
+        ro.rays = o.rays;
+        ro.max_slope = kPismoMaxSlopeTexels;
+        int flipped = 0;
+        double worst = 0;
+        for (int y = 0; y < rx6.height(); ++y)
+            for (int x = 0; x < rx6.width(); ++x) {
+                const double want = testing::pismo_visibility(ref, position(rx6, x, y), ro, normal_of(rx6, x, y));
+                const double d = std::abs(got.at(0, x, y) - want);
+                flipped += d > kAgree;
+                worst = std::max(worst, d);
+            }
+        const std::string what = std::string(name) + " with normals on " + backend;
+        EXPECT_LE(flipped, kMaxFlippedShare * rx6.width() * rx6.height()) << what << ", worst " << worst;
+        EXPECT_LE(worst, 0.05) << what;
+        expect_in_unit_range(got, what);
+    }
+}
+
+// The receiver's own surface against closed forms (support/pismo_scenes.h,
+// sphere_and_slab_scene): a thin slab's face turned from the light is dark
+// and its face toward it lit; a point of the sphere whose tangent plane has
+// the whole light above it is fully lit (no acne: the slope-scaled bias),
+// one with the whole light below fully dark. Without normals the fixed bias
+// of 2 texels (more than the slab's 2 cm at 128^2) lets its far face leak.
+PN_BACKEND_TEST(Pismo, TheReceiversOwnSurfaceMeetsTheClosedForms)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    static const reference::Scene scene = testing::sphere_and_slab_scene();
+    reference::LayeredMapOptions mo;
+    mo.size = 128;
+    static const reference::PismoMaps m = reference::render_pismo_maps(scene, 1, mo);
+    const testing::OwnSurfaceReceivers rx = testing::own_surface_receivers(scene);
+    PismoOptions o;
+    o.rays = 64;
+    const Image got = pismo_shade(ctx, library_maps(m), rx.points, o);
+    ASSERT_GT(rx.lit.size(), 20u);
+    ASSERT_GT(rx.dark.size(), 20u);
+    for (const int x : rx.lit) EXPECT_EQ(got.at(0, x, 0), 1.0f) << "lit receiver " << x << " on " << backend;
+    for (const int x : rx.dark) EXPECT_EQ(got.at(0, x, 0), 0.0f) << "dark receiver " << x << " on " << backend;
+    // The same points without their normals: the slab's far face leaks.
+    Image positions(rx.points.width(), 1, 3);
+    for (int x = 0; x < positions.width(); ++x)
+        for (int c = 0; c < 3; ++c) positions.at(c, x, 0) = rx.points.at(c, x, 0);
+    const Image fixed = pismo_shade(ctx, library_maps(m), positions, o);
+    int leaks = 0;
+    for (const int x : rx.slab_far_face) leaks += fixed.at(0, x, 0) > 0.5f;
+    EXPECT_GT(leaks, int(rx.slab_far_face.size()) / 2) << backend;
+}
+
 // The sphere and capsule of `contact` shadow themselves inside their convex
 // hull, where a maximum-depth map holds the far side of a caster, not the
 // surface that occludes a point on it (the source's warning, item 4).

@@ -9,7 +9,7 @@
 namespace penumbra::testing {
 
 PismoEstimates pismo_estimates(const reference::PismoMaps& maps, const reference::Receivers& rx,
-                               const PismoReferenceOptions& options)
+                               const PismoReferenceOptions& options, bool normals)
 {
     const auto layered = PismoReferenceMaps::layered(maps);
     const auto farthest = PismoReferenceMaps::maximum_depth(maps);
@@ -21,9 +21,12 @@ PismoEstimates pismo_estimates(const reference::PismoMaps& maps, const reference
                 if (rx.mask.at(0, x, y) == 0) continue;
                 const reference::Vec3 p{rx.world_position.at(0, x, y), rx.world_position.at(1, x, y),
                                         rx.world_position.at(2, x, y)};
-                out.pismo.at(0, x, y) = float(pismo_visibility(layered, p, options));
-                out.maximum_depth.at(0, x, y) = float(pismo_visibility(farthest, p, options));
-                out.averaged.at(0, x, y) = float(averaged_hard_shadows(layered, p, options));
+                const reference::Vec3 n = normals ? reference::Vec3{rx.normal.at(0, x, y), rx.normal.at(1, x, y),
+                                                                    rx.normal.at(2, x, y)}
+                                                  : reference::Vec3{};
+                out.pismo.at(0, x, y) = float(pismo_visibility(layered, p, options, n));
+                out.maximum_depth.at(0, x, y) = float(pismo_visibility(farthest, p, options, n));
+                out.averaged.at(0, x, y) = float(averaged_hard_shadows(layered, p, options, n));
             }
     });
     return out;

@@ -19,8 +19,9 @@ struct PismoEstimates {
 
 // Every valid receiver (rx.mask), rows in parallel, each over the kernel's ray
 // pattern (support/pismo_reference.h): the result does not depend on the threads.
+// With `normals`, each receiver's own surface (rx.normal) takes part in the test.
 PismoEstimates pismo_estimates(const reference::PismoMaps& maps, const reference::Receivers& rx,
-                               const PismoReferenceOptions& options);
+                               const PismoReferenceOptions& options, bool normals = false);
 
 // The valid receivers (rx.mask) that lie on one of the scene's planes
 // (on_planes), or the others: on a bounded caster, inside the casters' hull,

@@ -34,11 +34,33 @@ std::optional<Landing> land(const LayeredDepthMap& map, Vec3 p, double bias_texe
     return Landing{int(x), int(y), depth, bias_texels * texel};
 }
 
-// Whether a layer of `map` at q's pixel lies nearer than p's depth (minus the bias).
-bool occludes(const LayeredDepthMap& map, Vec3 q, Vec3 p, double bias_texels)
+// The receiver: its position, its normal (zero: unknown) and the options.
+struct Receiver {
+    Vec3 p, n;
+    const PismoReferenceOptions& o;
+
+    bool has_normal() const { return dot(n, n) > 0; }
+    // Whether P's own surface faces away from `towards`: a ray there enters P's solid.
+    bool faces_away(Vec3 towards) const { return has_normal() && dot(n, towards - p) <= 0; }
+    // The bias in texels in `map`: the fixed one, plus the depth P's own
+    // surface spans across a texel seen from the map's vertex (tan theta).
+    double bias_texels(const LayeredDepthMap& map) const
+    {
+        if (!has_normal()) return o.bias_texels;
+        const double c = dot(normalize(n), normalize(vec(map.camera().position) - p));
+        if (c <= 0) return o.bias_texels;
+        return o.bias_texels + std::min(std::sqrt(std::max(0.0, 1 - c * c)) / c, o.max_slope);
+    }
+};
+
+// Whether a layer of `map` at q's pixel lies nearer than P's depth (minus the
+// bias); P's own solid blocks a map whose vertex its surface faces away from.
+bool occludes(const LayeredDepthMap& map, Vec3 q, const Receiver& r)
 {
-    const std::optional<Landing> at_q = land(map, q, bias_texels);
-    const std::optional<Landing> at_p = land(map, p, bias_texels);
+    if (r.faces_away(vec(map.camera().position))) return true;
+    const double bias = r.bias_texels(map);
+    const std::optional<Landing> at_q = land(map, q, bias);
+    const std::optional<Landing> at_p = land(map, r.p, bias);
     if (!at_q || !at_p) return false;  // outside the map: no caster was seen there
     const auto layers = map.layers(at_q->x, at_q->y);
     return !layers.empty() && double(layers.front()) < at_p->depth - at_p->bias;
@@ -46,9 +68,9 @@ bool occludes(const LayeredDepthMap& map, Vec3 q, Vec3 p, double bias_texels)
 
 // The first estimate of one map: the depth of the farthest bled layer nearer
 // than p (the occluder nearest p), if any.
-std::optional<double> nearest_occluder_depth(const LayeredDepthMap& bled, Vec3 p, double bias_texels)
+std::optional<double> nearest_occluder_depth(const LayeredDepthMap& bled, const Receiver& r)
 {
-    const std::optional<Landing> at = land(bled, p, bias_texels);
+    const std::optional<Landing> at = land(bled, r.p, r.bias_texels(bled));
     if (!at) return std::nullopt;
     std::optional<double> nearest;
     for (float layer : bled.layers(at->x, at->y))
@@ -78,7 +100,14 @@ std::array<double, 3> barycentric(double a, double b)
 
 bool hard_shadow_test(const LayeredDepthMap& map, Vec3 p, double bias_texels)
 {
-    return occludes(map, p, p, bias_texels);
+    PismoReferenceOptions o;
+    o.bias_texels = bias_texels;
+    return occludes(map, p, Receiver{p, {}, o});
+}
+
+bool hard_shadow_test(const LayeredDepthMap& map, Vec3 p, Vec3 normal, const PismoReferenceOptions& options)
+{
+    return occludes(map, p, Receiver{p, normal, options});
 }
 
 PismoReferenceMaps PismoReferenceMaps::layered(const reference::PismoMaps& maps)
@@ -98,11 +127,12 @@ PismoReferenceMaps PismoReferenceMaps::maximum_depth(const reference::PismoMaps&
     return out;
 }
 
-double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o)
+double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o, Vec3 normal)
 {
     const reference::LightMesh& mesh = maps.source->mesh;
+    const Receiver r{p, normal, o};
     std::vector<std::optional<double>> estimate(mesh.vertices.size());
-    for (std::size_t j = 0; j < estimate.size(); ++j) estimate[j] = nearest_occluder_depth(maps.bled[j], p, o.bias_texels);
+    for (std::size_t j = 0; j < estimate.size(); ++j) estimate[j] = nearest_occluder_depth(maps.bled[j], r);
     const double total_area = mesh.area();
     double occlusion = 0;
     for (int t = 0; t < int(mesh.triangles.size()); ++t) {
@@ -115,6 +145,10 @@ double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoRefer
                 const auto w = barycentric((si + jitter(k)) / n, (sj + jitter(k + 1)) / n);
                 Vec3 light{};
                 for (int k = 0; k < 3; ++k) light = light + mesh.vertices[std::size_t(corners[k])] * w[k];
+                if (r.faces_away(light)) {  // the ray enters P's own solid
+                    occlusion += share / (n * n);
+                    continue;
+                }
                 double distance = 0, weight = 0;
                 for (int k = 0; k < 3; ++k)
                     if (const auto& d = estimate[std::size_t(corners[k])]) {
@@ -123,20 +157,28 @@ double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoRefer
                     }
                 const Vec3 to_p = p - light;
                 const Vec3 occluder = weight > 0 ? light + to_p * (distance / weight / length(to_p)) : p;
-                double blocked = 0;
-                for (int k = 0; k < 3; ++k)
-                    blocked += w[k] * occludes(maps.test[std::size_t(corners[k])], occluder, p, o.bias_texels);
-                occlusion += share * blocked / (n * n);
+                // A corner whose vertex P's surface faces away from sees P's own
+                // solid, not what this ray (above P's tangent plane) passes: the
+                // other corners answer, renormalised; none left: the ray is lit.
+                double blocked = 0, answering = 0;
+                for (int k = 0; k < 3; ++k) {
+                    const LayeredDepthMap& map = maps.test[std::size_t(corners[k])];
+                    if (r.faces_away(vec(map.camera().position))) continue;
+                    blocked += w[k] * occludes(map, occluder, r);
+                    answering += w[k];
+                }
+                occlusion += answering > 0 ? share * blocked / answering / (n * n) : 0;
             }
     }
     return std::clamp(1 - occlusion, 0.0, 1.0);
 }
 
-double averaged_hard_shadows(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o)
+double averaged_hard_shadows(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o, Vec3 normal)
 {
     const std::vector<double> weights = maps.source->mesh.vertex_weights();
+    const Receiver r{p, normal, o};
     double occlusion = 0;
-    for (std::size_t j = 0; j < weights.size(); ++j) occlusion += weights[j] * occludes(maps.test[j], p, p, o.bias_texels);
+    for (std::size_t j = 0; j < weights.size(); ++j) occlusion += weights[j] * occludes(maps.test[j], p, r);
     return std::clamp(1 - occlusion, 0.0, 1.0);
 }
 

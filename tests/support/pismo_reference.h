@@ -17,6 +17,14 @@ struct PismoReferenceOptions {
     // A layer occludes a point when it is nearer than the point's depth minus
     // bias_texels times the footprint of one texel at that depth.
     double bias_texels = 2;
+    // With the receiver's normal n (a non-zero `normal` below), the receiver's
+    // own surface (docs/pismo.md, "The receiver's own surface"): a ray to L
+    // with n . (L - P) <= 0 enters P's own solid and is blocked, as the
+    // truth's rays from P lifted along n are; a map's bias grows by
+    // min(tan theta, max_slope) texels, theta the angle between n and the
+    // direction to the map's vertex, the depth P's own surface spans across
+    // one texel there.
+    double max_slope = 8;
 };
 
 // The maps Pismo reads: the layered maps (or their maximum-depth variant) and
@@ -30,14 +38,20 @@ struct PismoReferenceMaps {
 
 // The light's visible fraction at point p, in [0, 1], over the kernel's ray
 // pattern (host/src/pismo_rays.h), the same for every point.
-double pismo_visibility(const PismoReferenceMaps& maps, reference::Vec3 p, const PismoReferenceOptions& options);
+// A zero normal: P's surface is unknown, the fixed bias alone.
+double pismo_visibility(const PismoReferenceMaps& maps, reference::Vec3 p, const PismoReferenceOptions& options,
+                        reference::Vec3 normal = {});
 
 // The hard shadow-map test of one map at p: its nearest layer at p's pixel
 // nearer than p's depth minus the bias (false outside the map).
 bool hard_shadow_test(const LayeredDepthMap& map, reference::Vec3 p, double bias_texels);
+// The same with P's own surface (options.max_slope, a non-zero normal).
+bool hard_shadow_test(const LayeredDepthMap& map, reference::Vec3 p, reference::Vec3 normal,
+                      const PismoReferenceOptions& options);
 
 // The same maps as hard shadows, each weighted by its vertex's share of the
 // light's area (LightMesh::vertex_weights).
-double averaged_hard_shadows(const PismoReferenceMaps& maps, reference::Vec3 p, const PismoReferenceOptions& options);
+double averaged_hard_shadows(const PismoReferenceMaps& maps, reference::Vec3 p, const PismoReferenceOptions& options,
+                             reference::Vec3 normal = {});
 
 }  // namespace penumbra::testing

@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
+
+#include "penumbra/image.h"
 
 #include "penumbra/pismo.h"
 #include "penumbra/reference/pismo_maps.h"
@@ -48,6 +51,68 @@ inline double half_plane_visibility(double px)
 {
     const double bound = std::max(-px * (10 / 4.99 - 1), -px * (10 / 5.01 - 1));
     return std::clamp((1 - bound) / 2, 0.0, 1.0);
+}
+
+// The receiver's own surface: the 2 x 2 light at height 10 of the half-plane
+// scene over a unit sphere at (0, 3, 0) and a thin slab, 1 x 0.02 x 1, at
+// (2, 5, 0). No plane: nothing else casts, and the sphere's rays (x <= 1 from
+// x <= 1) pass beside the slab.
+inline reference::Scene sphere_and_slab_scene()
+{
+    reference::Scene s = half_plane_scene();
+    s.name = "sphere-and-slab";
+    s.primitives.clear();
+    s.primitives.push_back(reference::Sphere{{0, 3, 0}, 1});
+    s.primitives.push_back(reference::Box{{2, 5, 0}, {1, 0.02, 1}, {0, 0, 0}});
+    return s;
+}
+
+// Receivers on sphere_and_slab_scene's casters, one row of 6 planes
+// (position, normal), and which of them have a closed form: lit, the whole
+// light above the tangent plane (every corner at a cosine over 0.15 from it,
+// within the slope bias's cap); dark, the whole light below it; the slab's
+// faces, the far one dark (and listed again in slab_far_face), the near one lit.
+struct OwnSurfaceReceivers {
+    Image points;
+    std::vector<int> lit, dark, slab_far_face;
+};
+
+inline OwnSurfaceReceivers own_surface_receivers(const reference::Scene& s)
+{
+    std::vector<std::array<double, 6>> rows;
+    OwnSurfaceReceivers out;
+    const reference::Vec3 centre{0, 3, 0};
+    for (int i = 0; i < 24; ++i)
+        for (int j = 0; j < 8; ++j) {
+            const double polar = 3.14159265358979 * (i + 0.5) / 24, azimuth = 6.28318530717959 * (j + 0.25) / 8;
+            const reference::Vec3 n{std::sin(polar) * std::cos(azimuth), std::cos(polar),
+                                    std::sin(polar) * std::sin(azimuth)};
+            const reference::Vec3 p = centre + n;
+            double lowest = 1, highest = -1;
+            for (double cx : {-1.0, 1.0})
+                for (double cz : {-1.0, 1.0}) {
+                    const reference::Vec3 corner = s.light.center + reference::Vec3{cx, 0, cz};
+                    const double c = dot(n, normalize(corner - p));
+                    lowest = std::min(lowest, c), highest = std::max(highest, c);
+                }
+            const int index = int(rows.size());
+            if (lowest > 0.15) out.lit.push_back(index);
+            if (highest < 0) out.dark.push_back(index);
+            rows.push_back({p.x, p.y, p.z, n.x, n.y, n.z});
+        }
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j) {
+            const double x = 1.7 + 0.15 * i, z = -0.3 + 0.15 * j;
+            out.dark.push_back(int(rows.size()));
+            out.slab_far_face.push_back(int(rows.size()));
+            rows.push_back({x, 4.99, z, 0, -1, 0});
+            out.lit.push_back(int(rows.size()));
+            rows.push_back({x, 5.01, z, 0, 1, 0});
+        }
+    out.points = Image(int(rows.size()), 1, 6);
+    for (int x = 0; x < int(rows.size()); ++x)
+        for (int c = 0; c < 6; ++c) out.points.at(c, x, 0) = float(rows[std::size_t(x)][std::size_t(c)]);
+    return out;
 }
 
 }  // namespace penumbra::testing

@@ -77,14 +77,20 @@ inline constexpr ParameterRange kPismoRaysRange{
 // The depth bias in texel footprints at the point's depth.
 inline constexpr ParameterRange kPismoBiasRange{"bias-texels", "bias-texels", 0, 64, false, false};
 
+// With normals, a map's bias grows by min(tan theta, this) texels, theta the
+// angle between the receiver's normal and the direction to the map's vertex
+// (docs/pismo.md, "The receiver's own surface").
+inline constexpr float kPismoMaxSlopeTexels = 8.0f;
+
 struct PismoOptions {
     int rays = 64;            // kPismoRaysRange
     float bias_texels = 2.0f;  // kPismoBiasRange (docs/pismo.md: why 2)
 };
 
 // Throws Error(InvalidArgument) naming the parameter: rays, bias-texels,
-// maps (empty), receivers (at least 3 channels, not empty, finite), out (1
-// channel of the receivers' size).
+// maps (empty), receivers (3 channels x, y, z, world positions, or 6: then
+// the normals' x, y, z, and the receiver's own surface takes part; not empty,
+// finite), out (1 channel of the receivers' size).
 void pismo_shade(Context& context, const PismoMaps& maps, const Image& receivers, const PismoOptions& options,
                  Image& out);
 Image pismo_shade(Context& context, const PismoMaps& maps, const Image& receivers, const PismoOptions& options = {});

@@ -1,0 +1,139 @@
+// Where Pismo's error over every receiver comes from (docs/pismo.md, "Where
+// the floor comes from"): on contact, overlap and fence at one level, the
+// RMSE against the truth of Pismo and of the averaged hard shadows split by
+// receiver class, and every hard shadow-map decision (receiver P, map j)
+// against the exact segment from P to the map's vertex V_j, traced as the
+// truth traces it (from P lifted by kNormalOffset along its normal). A wrong
+// decision is acne (the map occludes, the segment is clear) or a leak (the
+// reverse); each is split by what the map holds at P's pixel.
+// Float64 (tests/support/pismo_reference.h), no kernel. Figures, not checks.
+//
+// usage: pismo_error_classes [LEVEL [MAP_SIZE [BIAS_TEXELS [NORMALS]]]]
+//        (defaults 3, 384, 2, 0; fitted cameras; NORMALS 1: the receiver's own
+//        surface takes part, docs/pismo.md "The receiver's own surface")
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "penumbra/reference/ground_truth.h"
+#include "penumbra/reference/pismo_maps.h"
+#include "penumbra/reference/render.h"
+#include "penumbra/reference/tracer.h"
+#include "support/pismo_estimates.h"
+
+using namespace penumbra;
+using reference::Vec3;
+
+namespace {
+
+constexpr const char* kClasses[] = {"ground plane", "caster, facing the light", "caster, terminator band",
+                                    "caster, facing away"};
+// Why a hard decision went wrong, from the layers at P's pixel (texels of depth at P).
+constexpr const char* kCauses[] = {"acne: front layer within 8 texels of P", "acne: otherwise",
+                                   "leak: pixel empty (silhouette, coverage)", "leak: occluder within the bias",
+                                   "leak: no layer in front of P at the pixel centre", "leak: P outside the map"};
+
+struct Tally {
+    int receivers = 0;
+    double pismo_sq = 0, averaged_sq = 0;
+    long tests = 0;
+    std::array<long, 6> wrong{};
+};
+
+Vec3 at3(const Image& image, int x, int y) { return {image.at(0, x, y), image.at(1, x, y), image.at(2, x, y)}; }
+Vec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+// The receiver's class: on a plane, or on a caster by the cosine between its
+// normal and the direction to the light's centre (|cos| < 0.25: the terminator).
+int receiver_class(const reference::Scene& scene, const Image& planes, Vec3 p, Vec3 n, int x, int y)
+{
+    if (planes.at(0, x, y) > 0.5f) return 0;
+    const double c = dot(n, normalize(scene.light.center - p));
+    return c > 0.25 ? 1 : c < -0.25 ? 3 : 2;
+}
+
+// -1 when the hard test of `map` at p is right against `exact_blocked`, else the cause's index.
+int wrong_decision(const LayeredDepthMap& map, Vec3 p, Vec3 n, const testing::PismoReferenceOptions& o,
+                   bool exact_blocked)
+{
+    const MapCamera& c = map.camera();
+    const Vec3 local = p - vec(c.position);
+    const double d = dot(local, vec(c.forward));
+    const double u = 0.5 + dot(local, vec(c.right)) / (2 * d * c.tan_half_fov);
+    const double v = 0.5 + dot(local, vec(c.down)) / (2 * d * c.tan_half_fov);
+    const double fx = std::floor(u * map.width()), fy = std::floor(v * map.height());
+    if (!(d > 0 && fx >= 0 && fx < map.width() && fy >= 0 && fy < map.height())) return exact_blocked ? 5 : -1;
+    const double depth = length(local), texel = 2 * c.tan_half_fov * depth / map.width();
+    const auto layers = map.layers(int(fx), int(fy));
+    const bool occluded = testing::hard_shadow_test(map, p, n, o);
+    if (occluded == exact_blocked) return -1;
+    if (occluded) return !layers.empty() && (depth - layers.front()) / texel < 8 ? 0 : 1;
+    if (layers.empty()) return 2;
+    return layers.front() < depth ? 3 : 4;
+}
+
+void report(const reference::Scene& scene, int level, int size, double bias_texels, bool normals)
+{
+    const reference::Receivers rx = reference::render_receivers(scene, 64, 48);
+    const Image truth = reference::ground_truth(scene, rx, {32});
+    const Image planes = testing::receivers_on_planes(scene, rx, true);
+    reference::LayeredMapOptions mo;
+    mo.size = size;
+    const reference::PismoMaps maps = reference::render_pismo_maps(scene, level, mo, reference::receiver_region(rx));
+    testing::PismoReferenceOptions po;
+    po.rays = 1024;
+    po.bias_texels = bias_texels;
+    const testing::PismoEstimates e = testing::pismo_estimates(maps, rx, po, normals);
+    const reference::PreparedScene prepared(scene);
+    std::array<Tally, 4> tally{};
+    double total_sq = 0;
+    for (int y = 0; y < rx.height(); ++y)
+        for (int x = 0; x < rx.width(); ++x) {
+            if (rx.mask.at(0, x, y) == 0) continue;
+            const Vec3 p = at3(rx.world_position, x, y), n = at3(rx.normal, x, y);
+            Tally& t = tally[std::size_t(receiver_class(scene, planes, p, n, x, y))];
+            ++t.receivers;
+            const double ep = e.pismo.at(0, x, y) - truth.at(0, x, y), ea = e.averaged.at(0, x, y) - truth.at(0, x, y);
+            t.pismo_sq += ep * ep;
+            t.averaged_sq += ea * ea;
+            total_sq += ep * ep;
+            const Vec3 origin = p + n * (reference::kNormalOffset * (1 + max_abs_component(p)));
+            for (std::size_t j = 0; j < maps.maps.size(); ++j) {
+                const Vec3 vertex = maps.mesh.vertices[j];
+                const bool blocked = prepared.transmittance({origin, vertex - origin}, 0.0, 1.0) < 0.5;
+                ++t.tests;
+                if (const int cause = wrong_decision(maps.maps[j], p, normals ? n : Vec3{}, po, blocked); cause >= 0)
+                    ++t.wrong[std::size_t(cause)];
+            }
+        }
+    std::printf("\n%s, level %d (%zu maps), fitted %d^2, bias %.1f texels%s\n\n", scene.name.c_str(), level,
+                maps.maps.size(), size, bias_texels, normals ? ", with the receiver's own surface" : "");
+    std::printf("| receivers | count | Pismo RMSE | averaged RMSE | share of Pismo's squared error |");
+    for (const char* cause : kCauses) std::printf(" %s |", cause);
+    std::printf("\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (std::size_t k = 0; k < tally.size(); ++k) {
+        const Tally& t = tally[k];
+        if (t.receivers == 0) continue;
+        std::printf("| %s | %d | %.4f | %.4f | %.0f%% |", kClasses[k], t.receivers, std::sqrt(t.pismo_sq / t.receivers),
+                    std::sqrt(t.averaged_sq / t.receivers), 100 * t.pismo_sq / total_sq);
+        for (long w : t.wrong) std::printf(" %.2f%% |", 100.0 * double(w) / double(t.tests));
+        std::printf("\n");
+    }
+    std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    const int level = argc > 1 ? std::atoi(argv[1]) : 3;
+    const int size = argc > 2 ? std::atoi(argv[2]) : 384;
+    const double bias = argc > 3 ? std::atof(argv[3]) : 2.0;
+    const bool normals = argc > 4 && std::atoi(argv[4]) != 0;
+    std::printf("pismo_error_classes: 64x48 receivers, truth 32^2 strata, Pismo 1024 rays; hard decisions: "
+                "%% of (receiver, map) pairs of the class\n");
+    for (const char* name : {"contact", "overlap", "fence"}) report(reference::builtin_scene(name), level, size, bias, normals);
+    return 0;
+}
