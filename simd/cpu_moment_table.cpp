@@ -36,6 +36,17 @@ int band_width(int width)
     return std::max(kBandQuantum, rounded);
 }
 
+// The column sums and row carries start on a cache line, so that a strip of
+// columns is one line (not a load split over two) and two bands never write
+// the same line: a std::vector's 16-byte start put the first columns of each
+// band in a line with the last columns of the band on its left, which both
+// threads wrote on every row.
+template <class T>
+T* lines_of(AlignedBuffer& buffer)
+{
+    return reinterpret_cast<T*>(buffer.data());
+}
+
 struct Block {
     int bx, by;
 };
@@ -77,13 +88,13 @@ void CpuBackend::build_moment_table(const Image& depth, MomentTable& table, int*
             block_fn(depth.plane(0), origin, carry, columns, 0, bad_rows, p, x0, x1, y0, y1);
         });
     };
-    if (table.precision() == Precision::Float) {
-        std::vector<float> columns(scratch, 0.0f), carry(carries, 0.0f);
-        run(table.float_origin(), columns.data(), carry.data(), kernels_.sat_block_float);
-    } else {
-        std::vector<u32> columns(scratch, 0u), carry(carries, 0u);
-        run(table.exact_origin(), columns.data(), carry.data(), kernels_.sat_block_exact);
-    }
+    // Zeroed and on cache lines (AlignedBuffer): see lines_of.
+    static_assert(sizeof(float) == sizeof(u32));
+    AlignedBuffer columns(scratch * sizeof(u32)), carry(carries * sizeof(u32));
+    if (table.precision() == Precision::Float)
+        run(table.float_origin(), lines_of<float>(columns), lines_of<float>(carry), kernels_.sat_block_float);
+    else
+        run(table.exact_origin(), lines_of<u32>(columns), lines_of<u32>(carry), kernels_.sat_block_exact);
 }
 
 }  // namespace penumbra::cpu
