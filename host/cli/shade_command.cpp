@@ -5,7 +5,7 @@
 //           from --scene with cameras fitted to the receivers, or a directory
 //           from pismo-build, penumbra/pismo_files.h)
 //   RX.exr  float channels u, v, z: receivers' texture coordinates and depth
-//           (pismo: P.x, P.y, P.z, world positions, as render-scene writes them)
+//           (pismo: P.x, P.y, P.z, world positions, and N.x, N.y, N.z if present, as render-scene writes them)
 //   OUT.exr one float channel Y: visibility in [0, 1] on the receivers' grid
 // Output is written atomically: a failed run leaves no partial file and an
 // existing OUT.exr untouched.
@@ -13,6 +13,7 @@
 // Methods, their options and every check of an option's value are the
 // library's method table (penumbra/methods.h); this file reads the files,
 // runs the entry and names, for an error, the flag or file at fault.
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <exception>
@@ -50,7 +51,7 @@ std::string shade_help()
            "       penumbra shade --method pismo|pismo-maxdepth (--scene S | --pismo-maps DIR) --receivers RX.exr\n"
            "                      --out OUT.exr [--rays R] [--light-level L] [--map-size N] [--layers K]\n"
            "  SM.exr: float channel Z, light depth in [0, 1]; DSM.exr: a deep OpenEXR file (dsm-build writes one);\n"
-           "  RX.exr: float channels u, v, z (pismo: P.x, P.y, P.z, world positions);\n"
+           "  RX.exr: float channels u, v, z (pismo: P.x, P.y, P.z, world positions, and the normals N.x, N.y, N.z if present);\n"
            "  pismo renders its maps from --scene, cameras fitted to the receivers, or reads pismo-build's DIR:\n" +
            pismo_map_options_help() +
            "  OUT.exr: float channel Y, visibility in [0, 1] on the receivers' grid.\n"
@@ -162,6 +163,19 @@ Image read_input(const std::string& path, const std::vector<std::string>& channe
     return image;
 }
 
+// The channels `shade` reads from RX.exr: the method's, and for Pismo the
+// normals N.x, N.y, N.z too when the file has them (render-scene writes them),
+// so that the receiver's own surface takes part (docs/pismo.md).
+std::vector<std::string> receiver_channels_in(const ShadeFiles& files, const Method& method, const MethodSettings& s)
+{
+    std::vector<std::string> channels = receiver_channels(method, s);
+    if (method.input != MethodInput::PismoMapSet) return channels;
+    const std::vector<std::string> present = exr_channel_names(files.receivers, exr_limits());
+    const auto has = [&](const char* name) { return std::find(present.begin(), present.end(), name) != present.end(); };
+    if (has("N.x") && has("N.y") && has("N.z")) channels.insert(channels.end(), {"N.x", "N.y", "N.z"});
+    return channels;
+}
+
 // A deep map's reader names the file, the pixel and the sample; the line is the command's.
 DeepShadowMap read_deep_map(const std::string& path)
 {
@@ -232,7 +246,7 @@ int shade_command(const std::vector<std::string>& argv)
         std::future<Context> starting = start_context(ContextOptions{backend, {}}, warm_up);
         const SetOnUnwind on_unwind{inputs_failed};
         const auto shade_from = [&](const auto& map) {  // a shadow map or a deep map, read first
-            const Image receivers = read_input(files.receivers, receiver_channels(*method, settings), "receivers image");
+            const Image receivers = read_input(files.receivers, receiver_channels_in(files, *method, settings), "receivers image");
             Context context = start(starting);
             write_exr(out_path, method->run(context, map, receivers, settings), {"Y"});
         };

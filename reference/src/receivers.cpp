@@ -69,6 +69,17 @@ Receivers Receivers::allocate(int width, int height)
             Image(width, height, 1), Image(width, height, 1), Image(width, height, 1)};
 }
 
+Image Receivers::positions_and_normals() const
+{
+    Image out(width(), height(), 6);
+    for (int c = 0; c < 3; ++c)
+        for (int y = 0; y < height(); ++y) {
+            std::copy_n(world_position.row(c, y), width(), out.row(c, y));
+            std::copy_n(normal.row(c, y), width(), out.row(3 + c, y));
+        }
+    return out;
+}
+
 Receivers render_receivers(const Scene& scene, int width, int height)
 {
     require(width > 0 && height > 0, "render_receivers",

@@ -81,7 +81,8 @@ TEST_F(PismoShadeCli, TheToolsImageIsTheLibrarysOnTheSameMaps)
     o.max_layers = 4;
     const PismoMapSet set = reference::render_pismo_map_set(scene, 0, o, reference::receiver_region(rx));
     Context ctx(ContextOptions{Backend::Scalar, {}});
-    const Image positions = read_exr(path("rx.exr"), {"P.x", "P.y", "P.z"});
+    // render-scene's RX.exr has the normals: the tool reads them with the positions.
+    const Image positions = read_exr(path("rx.exr"), {"P.x", "P.y", "P.z", "N.x", "N.y", "N.z"});
     for (const char* method : {"pismo", "pismo-maxdepth"}) {
         const testing::CliRun run = run_cli({"shade", "--method", method, "--scene", "contact", "--receivers",
                                              path("rx.exr"), "--out", path("out.exr"), "--light-level", "0",
@@ -103,6 +104,15 @@ TEST_F(PismoShadeCli, TheToolsImageIsTheLibrarysOnTheSameMaps)
     MethodSettings s;
     s.rays = 16;
     EXPECT_EQ(testing::difference(read_exr(path("out.exr"), {"Y"}), find_method("pismo").run(ctx, set, positions, s))
+                  .differing,
+              0);
+    // Positions alone: the receivers' surface is not known, and the tool shades as the library does on them.
+    const Image positions_only = read_exr(path("rx.exr"), {"P.x", "P.y", "P.z"});
+    write_exr(path("rx_p.exr"), positions_only, {"P.x", "P.y", "P.z"});
+    const testing::CliRun alone = run_cli({"shade", "--method", "pismo", "--pismo-maps", path("maps"), "--receivers",
+                                           path("rx_p.exr"), "--out", path("out.exr"), "--rays", "16", "--backend", "scalar"});
+    ASSERT_EQ(alone.exit_code, 0) << alone.err;
+    EXPECT_EQ(testing::difference(read_exr(path("out.exr"), {"Y"}), find_method("pismo").run(ctx, set, positions_only, s))
                   .differing,
               0);
 }

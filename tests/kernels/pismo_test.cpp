@@ -118,19 +118,6 @@ PN_BACKEND_TEST(Pismo, AgreesWithTheFloat64ReferenceReceiverByReceiver)
             }
 }
 
-// The receivers' positions and normals, 6 planes: the receiver's own surface takes part.
-Image with_normals(const reference::Receivers& rx)
-{
-    Image out(rx.width(), rx.height(), 6);
-    for (int y = 0; y < rx.height(); ++y)
-        for (int x = 0; x < rx.width(); ++x)
-            for (int c = 0; c < 3; ++c) {
-                out.at(c, x, y) = rx.world_position.at(c, x, y);
-                out.at(3 + c, x, y) = rx.normal.at(c, x, y);
-            }
-    return out;
-}
-
 Vec3 normal_of(const Image& rx6, int x, int y) { return {rx6.at(3, x, y), rx6.at(4, x, y), rx6.at(5, x, y)}; }
 
 // The same with normals (kernels/pismo.h, the receiver's own surface). A
@@ -142,7 +129,7 @@ PN_BACKEND_TEST(Pismo, WithNormalsAgreesWithTheFloat64ReferenceReceiverByReceive
     for (const char* name : {"contact", "overlap"}) {
         const Case& c = scene_case(name, 1);
         const auto ref = testing::PismoReferenceMaps::layered(c.maps);
-        const Image rx6 = with_normals(c.receivers);
+        const Image rx6 = c.receivers.positions_and_normals();
         PismoOptions o;
         o.rays = 48;
         const Image got = pismo_shade(ctx, library_maps(c.maps), rx6, o);

@@ -67,6 +67,9 @@ struct Receivers {
     int height() const noexcept { return mask.height(); }
     // Zero-filled images of the given size (for receivers built by hand).
     static Receivers allocate(int width, int height);
+    // World positions then normals, 6 planes: what Pismo reads to count the
+    // receiver's own surface (docs/pismo.md), as RX.exr's P and N channels.
+    Image positions_and_normals() const;
 };
 
 Receivers render_receivers(const Scene& scene, int width, int height);
