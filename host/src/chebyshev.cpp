@@ -5,6 +5,7 @@
 #include <string>
 
 #include "checked_lookup.h"
+#include "chebyshev_params.h"
 #include "visibility_output.h"
 #include "window_limits.h"
 #include "penumbra/error.h"
@@ -53,6 +54,26 @@ void check_output(const std::string& op, const Image& receivers, const Image& ou
 
 }  // namespace
 
+namespace detail {
+
+ChebyshevParams vsm_table_params(const std::string& op, pn_dims table, Precision precision, int limbs,
+                                 pn_dims receivers, pn_dims out, const VsmOptions& options)
+{
+    check_filter(op, options.min_variance, options.bleed);
+    detail::check_radius(op, options.radius, precision);
+    ChebyshevParams p{};
+    p.receivers = receivers;
+    p.out = out;
+    p.min_variance = options.min_variance;
+    p.bleed = options.bleed;
+    p.table = table;
+    p.limbs = limbs;
+    p.radius = options.radius;
+    return p;
+}
+
+}  // namespace detail
+
 PN_ALLOCATING_VISIBILITY(vsm, MomentTable, VsmOptions)
 PN_ALLOCATING_VISIBILITY(vsm, Image, VsmOptions)
 PN_ALLOCATING_VISIBILITY(vssm, MomentTable, VssmOptions)
@@ -62,13 +83,9 @@ void vsm(Context& context, const MomentTable& table, const Image& receivers, con
     const std::string op = "vsm";
     check_table(op, table);
     check_receivers(op, receivers);
-    check_filter(op, options.min_variance, options.bleed);
-    detail::check_radius(op, options.radius, table.precision());
+    const ChebyshevParams p = detail::vsm_table_params(op, detail::dims_of(table), table.precision(), table.limbs(),
+                                                       detail::dims_of(receivers), detail::dims_of(out), options);
     check_output(op, receivers, out);
-    ChebyshevParams p = base_params(receivers, out, options.min_variance, options.bleed);
-    p.table = detail::dims_of(table);
-    p.limbs = table.limbs();
-    p.radius = options.radius;
     detail::checked_table_lookup<KernelId::vsm_float, KernelId::vsm_exact>(context.impl(), op, table, receivers, p,
                                                                            out);
 }
