@@ -368,11 +368,15 @@ penumbra_status penumbra_enqueue_shade(penumbra_context* context, const penumbra
                                      {receivers, "receivers"},
                                      {out, "out"}});
         const std::string name = method->method->name;
-        penumbra::require(name == "vsm", kFunction, "method",
-                          "'" + name + "' does not run on device images yet; only vsm does");
+        penumbra::require(name == "vsm" || name == "vssm", kFunction, "method",
+                          "'" + name + "' does not run on device images yet; vsm and vssm do");
         const penumbra::MethodSettings& m = method->settings;
-        penumbra::vsm(context->context, table->table, receivers->image, {m.radius, m.min_variance, m.bleed},
-                      out->image);
+        if (name == "vssm")
+            penumbra::vssm(context->context, table->table, receivers->image, {m.light_size, m.min_variance, m.bleed},
+                           out->image);
+        else
+            penumbra::vsm(context->context, table->table, receivers->image, {m.radius, m.min_variance, m.bleed},
+                          out->image);
     });
 }
 

@@ -188,10 +188,15 @@ Event build_moment_table(Context& context, const DeviceImage& depth, DeviceMomen
     return enqueued(queue);
 }
 
-Event vsm(Context& context, const DeviceMomentTable& table, const DeviceImage& receivers, const VsmOptions& options,
-          DeviceImage& out)
+namespace {
+
+// VSM and VSSM on a device table: the same checks, then the method's Params
+// (`params`, which checks its options) and its Float / Exact twin, or the
+// Image form at once (`run_host`) on the CPU backends.
+template <detail::KernelId Float, detail::KernelId Exact, class Params, class RunHost>
+Event chebyshev_lookup(Context& context, const std::string& op, const DeviceMomentTable& table,
+                       const DeviceImage& receivers, DeviceImage& out, Params&& params, RunHost&& run_host)
 {
-    const std::string op = "vsm";
     check_owned(context, table, op, "table");
     check_owned(context, receivers, op, "receivers");
     check_owned(context, out, op, "out");
@@ -200,19 +205,40 @@ Event vsm(Context& context, const DeviceMomentTable& table, const DeviceImage& r
     check_shape(op, out, "out", receivers.width(), receivers.height(), 1);
     detail::DeviceQueue* queue = queue_of(context);
     if (!queue) {
-        vsm(context, host_table(table), host_image(receivers), options, host_image(out));
-        out.data().unit_bounded = true;
+        run_host(host_table(table), host_image(receivers), host_image(out));
+        out.data().unit_bounded = true;  // a visibility
         return {};
     }
     const detail::DeviceTableData& t = table.data();
-    const ChebyshevParams p =
-        detail::vsm_table_params(op, t.dims(), t.precision, t.limbs, receivers.data().dims, out.data().dims, options);
-    const detail::KernelId kernel =
-        t.precision == Precision::Float ? detail::KernelId::vsm_float : detail::KernelId::vsm_exact;
-    queue->table_lookup(kernel, t, receivers.data(), &p, out.data(),
+    const ChebyshevParams p = params(t, receivers.data().dims, out.data().dims);
+    queue->table_lookup(t.precision == Precision::Float ? Float : Exact, t, receivers.data(), &p, out.data(),
                         row_error(op, "receivers", "the receivers holds a NaN or infinite value"));
-    out.data().unit_bounded = true;  // a visibility
+    out.data().unit_bounded = true;
     return enqueued(queue);
+}
+
+}  // namespace
+
+Event vsm(Context& context, const DeviceMomentTable& table, const DeviceImage& receivers, const VsmOptions& options,
+          DeviceImage& out)
+{
+    return chebyshev_lookup<detail::KernelId::vsm_float, detail::KernelId::vsm_exact>(
+        context, "vsm", table, receivers, out,
+        [&](const detail::DeviceTableData& t, pn_dims rx, pn_dims o) {
+            return detail::vsm_table_params("vsm", t.dims(), t.precision, t.limbs, rx, o, options);
+        },
+        [&](const MomentTable& t, const Image& rx, Image& o) { vsm(context, t, rx, options, o); });
+}
+
+Event vssm(Context& context, const DeviceMomentTable& table, const DeviceImage& receivers, const VssmOptions& options,
+           DeviceImage& out)
+{
+    return chebyshev_lookup<detail::KernelId::vssm_float, detail::KernelId::vssm_exact>(
+        context, "vssm", table, receivers, out,
+        [&](const detail::DeviceTableData& t, pn_dims rx, pn_dims o) {
+            return detail::vssm_table_params("vssm", t.dims(), t.precision, t.limbs, rx, o, options);
+        },
+        [&](const MomentTable& t, const Image& rx, Image& o) { vssm(context, t, rx, options, o); });
 }
 
 Event cross_bilateral(Context& context, const DeviceImage& mask, const DeviceImage& guide_depth,

@@ -184,7 +184,7 @@ static void device_chain_matches_views(const char* backend_name, penumbra_contex
     /* Bad input: another method, a wrong output size, a foreign cl_mem on a CPU context, NULL handles. */
     penumbra_method* pcf = NULL;
     CHECK(penumbra_method_create("pcf", NULL, NULL, 0, &pcf) == PENUMBRA_OK, "%s", penumbra_last_error());
-    expect_failure(penumbra_enqueue_shade(context, pcf, table, rx, vis), PENUMBRA_INVALID_ARGUMENT, "method", "vsm",
+    expect_failure(penumbra_enqueue_shade(context, pcf, table, rx, vis), PENUMBRA_INVALID_ARGUMENT, "method", "vssm",
                    "a method that is not device-resident");
     expect_failure(penumbra_enqueue_shade(context, vsm, table, rx, rx), PENUMBRA_INVALID_ARGUMENT,
                    "out", "1-channel", "a 3-channel output");

@@ -1,7 +1,7 @@
 // Device-resident images and the enqueued chain (penumbra/device_image.h):
-// build_moment_table -> vsm -> cross_bilateral on device images equals the
-// same chain through Images (bit for bit on the same backend, and within the
-// blur's cross-backend tolerance of the scalar oracle), on every backend and
+// build_moment_table -> vsm (or vssm) -> cross_bilateral on device images
+// equals the same chain through Images (bit for bit on the same backend, and
+// for vsm within the blur's cross-backend tolerance of the scalar oracle), on every backend and
 // at odd sizes; on OpenCL the chain moves nothing between host and device
 // between its steps (host_transfers()), while the Image path does; interop
 // over a cl_context, queue and cl_mem made with the OpenCL C API; bad input.
@@ -48,11 +48,19 @@ BilateralOptions blur_options(bool separable)
     return o;
 }
 
-// The host path: Images in and out of every step.
-Image host_chain(Context& ctx, const Inputs& in, Precision precision, bool separable)
+VssmOptions soft_options()
+{
+    VssmOptions o;
+    o.light_size = 0.2f;
+    return o;
+}
+
+// The host path: Images in and out of every step; `soft`: VSSM's lookup for VSM's.
+Image host_chain(Context& ctx, const Inputs& in, Precision precision, bool separable, bool soft = false)
 {
     const MomentTable table = build_moment_table(ctx, in.depth, 2, precision);
-    const Image visibility = vsm(ctx, table, in.receivers, VsmOptions{});
+    const Image visibility = soft ? vssm(ctx, table, in.receivers, soft_options())
+                                  : vsm(ctx, table, in.receivers, VsmOptions{});
     return cross_bilateral(ctx, visibility, in.guide, blur_options(separable));
 }
 
@@ -69,10 +77,11 @@ Chain uploaded(Context& ctx, const Inputs& in, Precision precision)
             device_moment_table(ctx, in.depth.width(), in.depth.height(), precision)};
 }
 
-Event enqueue_chain(Context& ctx, Chain& c, bool separable)
+Event enqueue_chain(Context& ctx, Chain& c, bool separable, bool soft = false)
 {
     build_moment_table(ctx, c.depth, c.table);
-    vsm(ctx, c.table, c.receivers, VsmOptions{}, c.visibility);
+    if (soft) vssm(ctx, c.table, c.receivers, soft_options(), c.visibility);
+    else vsm(ctx, c.table, c.receivers, VsmOptions{}, c.visibility);
     return cross_bilateral(ctx, c.visibility, c.guide, blur_options(separable), c.blurred);
 }
 
@@ -110,19 +119,26 @@ PN_BACKEND_TEST(DeviceChain, EqualsTheHostPathAtOddSizes)
     Context& oracle = PN_CONTEXT_OR_SKIP("scalar");
     for (const auto [w, h] : {std::pair{1, 1}, {7, 3}, {17, 5}, {33, 9}})
         for (const Precision precision : {Precision::Exact, Precision::Float})
-            for (const bool separable : {false, true}) {
-                const std::string what = std::to_string(w) + "x" + std::to_string(h) + " " + to_string(precision) +
-                                         (separable ? " separable" : " full");
-                const Inputs in = inputs(w, h);
-                Chain chain = uploaded(ctx, in, precision);
-                const Event done = enqueue_chain(ctx, chain, separable);
-                done.wait();
-                EXPECT_TRUE(done.complete()) << what;
-                const Image result = download(ctx, chain.blurred);
-                expect_same(result, host_chain(ctx, in, precision, separable), 0.0f, what + " vs the host path");
-                // The scalar oracle, within the blur's cross-backend tolerance (tests/kernels/bilateral_test.cpp).
-                expect_same(result, host_chain(oracle, in, precision, separable), 1e-5f, what + " vs scalar");
-            }
+            for (const bool separable : {false, true})
+                for (const bool soft : {false, true}) {
+                    const std::string what = std::to_string(w) + "x" + std::to_string(h) + " " +
+                                             to_string(precision) + (separable ? " separable" : " full") +
+                                             (soft ? " vssm" : " vsm");
+                    const Inputs in = inputs(w, h);
+                    Chain chain = uploaded(ctx, in, precision);
+                    const Event done = enqueue_chain(ctx, chain, separable, soft);
+                    done.wait();
+                    EXPECT_TRUE(done.complete()) << what;
+                    const Image result = download(ctx, chain.blurred);
+                    expect_same(result, host_chain(ctx, in, precision, separable, soft), 0.0f,
+                                what + " vs the host path");
+                    // The scalar oracle, within the blur's cross-backend tolerance (tests/kernels/bilateral_test.cpp).
+                    // VSSM's answer on random receivers is ill-determined (its blocker search's sensitivity:
+                    // tests/kernels/vssm_test.cpp bounds each backend against its reference instead), so its
+                    // chain is held to the same backend's host path only.
+                    if (!soft)
+                        expect_same(result, host_chain(oracle, in, precision, separable), 1e-5f, what + " vs scalar");
+                }
 }
 
 PN_BACKEND_TEST(DeviceChain, ReportsBadInputAsTheOperationsError)
@@ -174,6 +190,9 @@ PN_BACKEND_TEST(DeviceChain, RefusesShapesAndForeignImages)
     VsmOptions bad;
     bad.radius = -1;
     EXPECT_EQ(parameter_of([&] { vsm(ctx, c.table, c.receivers, bad, c.visibility); }), "radius");
+    VssmOptions wide_light;
+    wide_light.light_size = 1e3f;
+    EXPECT_EQ(parameter_of([&] { vssm(ctx, c.table, c.receivers, wide_light, c.visibility); }), "light-size");
     if (ctx.backend() != Backend::OpenCL) {
         int not_a_buffer = 0;
         EXPECT_EQ(parameter_of([&] {

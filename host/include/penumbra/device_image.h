@@ -71,7 +71,7 @@ private:
     std::shared_ptr<detail::DeviceData> data_;
 };
 
-// A moment table of VSM's shape (2 moments) on the device.
+// A moment table of VSM's shape (2 moments: VSM and VSSM read it) on the device.
 class DeviceMomentTable {
 public:
     DeviceMomentTable() = default;
@@ -108,6 +108,8 @@ DeviceMomentTable device_moment_table(Context& context, int width, int height,
 Event build_moment_table(Context& context, const DeviceImage& depth, DeviceMomentTable& table);
 Event vsm(Context& context, const DeviceMomentTable& table, const DeviceImage& receivers, const VsmOptions& options,
           DeviceImage& out);
+Event vssm(Context& context, const DeviceMomentTable& table, const DeviceImage& receivers, const VssmOptions& options,
+           DeviceImage& out);
 Event cross_bilateral(Context& context, const DeviceImage& mask, const DeviceImage& guide_depth,
                       const BilateralOptions& options, DeviceImage& out, const DeviceImage* guide_normals = nullptr);
 

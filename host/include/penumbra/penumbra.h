@@ -172,8 +172,8 @@ void penumbra_device_table_destroy(penumbra_device_table* table); /* NULL: nothi
 
 penumbra_status penumbra_enqueue_moment_table(penumbra_context* context, const penumbra_device_image* depth,
                                               penumbra_device_table* table);
-/* The lookup step of `method` on a device table: "vsm" (its radius,
- * min-variance and bleed options); another method is PENUMBRA_INVALID_ARGUMENT. */
+/* The lookup step of `method` on a device table: "vsm" or "vssm", with the
+ * method's options; another method is PENUMBRA_INVALID_ARGUMENT. */
 penumbra_status penumbra_enqueue_shade(penumbra_context* context, const penumbra_method* method,
                                        const penumbra_device_table* table, const penumbra_device_image* receivers,
                                        penumbra_device_image* out);
