@@ -1,6 +1,14 @@
 #include "cl/opencl_launch.h"
 
+#include "cl/transfer_counts.h"
+
 namespace penumbra::cl_backend {
+
+std::size_t extent_of(const pn_dims& dims, int channels)
+{
+    return std::size_t(channels - 1) * std::size_t(dims.plane_pitch) +
+           std::size_t(dims.height - 1) * std::size_t(dims.pitch) + std::size_t(dims.width);
+}
 
 // Up to the last pixel, not the plane pitch times the planes: a borrowed
 // image (penumbra/image_view.h) may end there.
@@ -23,6 +31,7 @@ Output<int> row_flags(const cl::Context& context, int* bad_rows, int rows)
 
 cl::Buffer table_storage(const cl::Context& context, const MomentTable& table, cl_mem_flags access)
 {
+    count_upload(table.storage_elements() * 4);
     return cl::Buffer(context, access | CL_MEM_USE_HOST_PTR, table.storage_elements() * 4,
                       const_cast<void*>(static_cast<const void*>(table.storage())));
 }
@@ -36,6 +45,7 @@ cl::Buffer table_origin(cl::Buffer& storage, const MomentTable& table, cl_mem_fl
 
 void sync_to_host(const cl::CommandQueue& queue, const cl::Buffer& buffer, std::size_t bytes)
 {
+    count_download(bytes);
     void* mapped = queue.enqueueMapBuffer(buffer, CL_TRUE, CL_MAP_READ, 0, bytes);
     cl::Event done;
     queue.enqueueUnmapMemObject(buffer, mapped, nullptr, &done);

@@ -24,10 +24,20 @@
 #include "cl/opencl_programs.h"
 #include "cl/opencl_work_groups.h"
 #include "host/backend/kernel_id.h"
+#include "kernels/params.h"
 #include "penumbra/image.h"
 #include "penumbra/moment_table.h"
 
 namespace penumbra::cl_backend {
+
+// Every host <-> device transfer the backend makes, counted for
+// penumbra::host_transfers() (penumbra/device_image.h): a buffer over or
+// copied from host memory is one upload, a map or read back one download.
+void count_upload(std::size_t bytes);
+void count_download(std::size_t bytes);
+
+// Elements from plane 0 to just past the last pixel of an image of `channels` planes of these dims.
+std::size_t extent_of(const pn_dims& dims, int channels);
 
 template <class Pointer>
 struct DeviceBuffer {
@@ -45,12 +55,14 @@ template <class T>
 Input<T> read_only(const cl::Context& context, const T* data, std::size_t count)
 {
     const std::size_t bytes = count * sizeof(T);
+    count_upload(bytes);
     return {cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, bytes, const_cast<T*>(data)), bytes};
 }
 template <class T>
 Output<T> read_write(const cl::Context& context, T* data, std::size_t count, cl_mem_flags access = CL_MEM_READ_WRITE)
 {
     const std::size_t bytes = count * sizeof(T);
+    count_upload(bytes);
     return {cl::Buffer(context, access | CL_MEM_USE_HOST_PTR, bytes, data), bytes};
 }
 // Device memory: a copy of `values`, zeros, or uninitialised scratch.
@@ -58,6 +70,7 @@ template <class T>
 Input<T> copy_of(const cl::Context& context, const std::vector<T>& values)
 {
     const std::size_t bytes = values.size() * sizeof(T);
+    count_upload(bytes);
     return {cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, const_cast<T*>(values.data())), bytes};
 }
 template <class T>
@@ -65,6 +78,7 @@ Output<T> zeros(const cl::Context& context, std::size_t count)
 {
     std::vector<T> zero(count, T(0));
     const std::size_t bytes = count * sizeof(T);
+    count_upload(bytes);
     return {cl::Buffer(context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, zero.data()), bytes};
 }
 template <class T>

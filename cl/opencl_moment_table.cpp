@@ -23,6 +23,17 @@ SatParams table_params(const Image& depth, const MomentTable& table, int bands)
 
 }  // namespace
 
+// The band height and column rows of this schedule, for a device table's build.
+SatParams device_table_params(pn_dims depth, pn_dims table, int limbs)
+{
+    const int bands = (depth.height + kBandHeight - 1) / kBandHeight;
+    return detail::sat_params(depth, table, 2, limbs, bands, kBandHeight);
+}
+
+namespace {
+
+}  // namespace
+
 template <class T>
 void OpenClBackend::join_bands(const Output<T>& origin, const Output<T>& columns, const SatParams& params,
                                Pixels pixels)
@@ -37,26 +48,40 @@ template void OpenClBackend::join_bands(const Output<std::uint32_t>&, const Outp
 void OpenClBackend::build_moment_table(const Image& depth, MomentTable& table, int* bad_rows)
 {
     translate_cl_errors([&] {
-        if (table.precision() == Precision::Exact)
-            build_table_as<KernelId::sat_bands_exact, std::uint32_t>(depth, table, bad_rows);
-        else
-            build_table_as<KernelId::sat_bands_float, float>(depth, table, bad_rows);
+        const int bands = (depth.height() + kBandHeight - 1) / kBandHeight;
+        const cl_mem_flags access = CL_MEM_READ_WRITE;
+        cl::Buffer storage = table_storage(context(), table, access);
+        const cl::Buffer origin = table_origin(storage, table, access);
+        const Output<int> flags = row_flags(context(), bad_rows, depth.height());
+        enqueue_table_build(image_input(context(), depth), origin,
+                            table.storage_elements() * 4 - table.origin_offset_bytes(), table.precision(),
+                            table_params(depth, table, bands), table.planes(), flags);
+        sync_to_host(queue(), storage, table.storage_elements() * 4);
+        sync_to_host(queue(), flags);
     });
 }
 
-template <KernelId K, class T>
-void OpenClBackend::build_table_as(const Image& depth, MomentTable& table, int* bad_rows)
+void OpenClBackend::enqueue_table_build(const Input<float>& depth, const cl::Buffer& origin,
+                                        std::size_t origin_bytes, Precision precision, const SatParams& params,
+                                        int planes, const Output<int>& flags)
 {
-    const int bands = (depth.height() + kBandHeight - 1) / kBandHeight;
-    const SatParams p = table_params(depth, table, bands);
-    const auto target = table_output<T>(context(), table);
-    const Output<T> carry = zeros<T>(context(), std::size_t(depth.height()) * table.planes());
-    const Output<T> columns = zeros<T>(context(), std::size_t(p.columns.plane_pitch) * table.planes());
-    const Output<int> flags = row_flags(context(), bad_rows, depth.height());
-    launch<K>(Tasks{bands}, image_input(context(), depth), target.origin, carry, columns, flags, p);
-    join_bands(target.origin, columns, p, Pixels{depth.width(), depth.height()});
-    sync_to_host(queue(), target.storage, table.storage_elements() * 4);
-    sync_to_host(queue(), flags);
+    if (precision == Precision::Exact)
+        enqueue_table_build_as<KernelId::sat_bands_exact>(depth, Output<std::uint32_t>{origin, origin_bytes}, params,
+                                                          planes, flags);
+    else
+        enqueue_table_build_as<KernelId::sat_bands_float>(depth, Output<float>{origin, origin_bytes}, params, planes,
+                                                          flags);
+}
+
+template <KernelId K, class T>
+void OpenClBackend::enqueue_table_build_as(const Input<float>& depth, const Output<T>& origin, const SatParams& p,
+                                           int planes, const Output<int>& flags)
+{
+    const int bands = (p.depth.height + kBandHeight - 1) / kBandHeight;
+    const Output<T> carry = device_zeros<T>(std::size_t(p.depth.height) * std::size_t(planes));
+    const Output<T> columns = device_zeros<T>(std::size_t(p.columns.plane_pitch) * std::size_t(planes));
+    launch<K>(Tasks{bands}, depth, origin, carry, columns, flags, p);
+    join_bands(origin, columns, p, Pixels{p.depth.width, p.depth.height});
 }
 
 }  // namespace penumbra::cl_backend

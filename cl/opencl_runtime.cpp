@@ -321,17 +321,44 @@ Runtime::Runtime(DeviceChoice choice, ProgramCache cache, ProgramCache seed)
     device_ = chosen.device;
     info_ = chosen.info;
     work_groups_ = work_groups_for(info_.max_work_group_size);
-    // The moment kernels form per-window moments in double (kernels/dialect.h):
-    // a device without fp64 would fail to build them, so refuse it here, by name.
+    require_double_precision();
+    translate_cl_errors([&] {
+        context_ = process_context(device_);
+        queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE);
+    });
+}
+
+// The moment kernels form per-window moments in double (kernels/dialect.h):
+// a device without fp64 would fail to build them, so refuse it here, by name.
+void Runtime::require_double_precision() const
+{
     const std::string extensions = translate_cl_errors([&] { return device_.getInfo<CL_DEVICE_EXTENSIONS>(); });
     if (extensions.find("cl_khr_fp64") == std::string::npos)
         throw Error(ErrorCategory::Backend, "opencl",
                     "device '" + info_.device_name + "' has no double precision (cl_khr_fp64), which the moment "
                     "kernels need; choose another device or --backend simd");
+}
+
+// The caller's objects, retained (cl::Context and cl::CommandQueue release
+// them when the last copy goes); the device is the queue's.
+Runtime::Runtime(cl_context context, cl_command_queue queue, ProgramCache cache, ProgramCache seed)
+    : cache_(std::move(cache)), seed_(std::move(seed))
+{
+    const std::string op = "Context::from_opencl";
+    require(context != nullptr, op, "context", "the cl_context is null");
+    require(queue != nullptr, op, "queue", "the cl_command_queue is null");
     translate_cl_errors([&] {
-        context_ = process_context(device_);
-        queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE);
+        context_ = cl::Context(context, true);
+        queue_ = cl::CommandQueue(queue, true);
+        require(queue_.getInfo<CL_QUEUE_CONTEXT>()() == context, op, "queue",
+                "the command queue belongs to another cl_context; pass the queue's own context");
+        require((queue_.getInfo<CL_QUEUE_PROPERTIES>() & CL_QUEUE_OUT_OF_ORDER_EXEC_MODE_ENABLE) == 0, op, "queue",
+                "the command queue is out of order; penumbra chains its kernels on an in-order queue");
+        device_ = queue_.getInfo<CL_QUEUE_DEVICE>();
+        info_ = describe(cl::Platform(device_.getInfo<CL_DEVICE_PLATFORM>(), true), device_);
     });
+    work_groups_ = work_groups_for(info_.max_work_group_size);
+    require_double_precision();
 }
 
 cl::Program Runtime::build(const std::string& source, const std::string& options, const BeforeStore& before_store)

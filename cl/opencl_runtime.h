@@ -93,6 +93,13 @@ public:
                      ProgramCache cache = ProgramCache::in_default_directory(),
                      ProgramCache seed = ProgramCache::installed_seed());
 
+    // Over a caller's context and in-order queue, retained and released by
+    // this runtime (interop: penumbra/device_image.h); the device is the
+    // queue's. Error(InvalidArgument) for a null or mismatched pair or an
+    // out-of-order queue.
+    Runtime(cl_context context, cl_command_queue queue, ProgramCache cache = ProgramCache::in_default_directory(),
+            ProgramCache seed = ProgramCache::installed_seed());
+
     const cl::Context& context() const { return context_; }
     const cl::Device& device() const { return device_; }
     const cl::CommandQueue& queue() const { return queue_; }
@@ -128,6 +135,7 @@ private:
                                                  const std::string& options, std::string_view origin);
     std::optional<cl::Program> build_from_stores(std::uint64_t key, const std::string& options);
     cl::Program build_from_source(const std::string& source, const std::string& options) const;
+    void require_double_precision() const;
     void store_binary(const cl::Program& program, std::uint64_t key);
 
     cl::Context context_;

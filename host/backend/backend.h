@@ -178,9 +178,14 @@ void visit_lookup(KernelId kernel, const void* params, Visitor&& visit)
     VIRTUAL void build_encoded_table(const Image& depth, const EncodedSatParams& params, MomentTable& table,      \
                                      int* bad_rows) SPECIFIER
 
+class DeviceQueue;  // host/backend/device_queue.h
+
 class BackendImpl {
 public:
     virtual ~BackendImpl() = default;
+    // Device-resident storage and enqueued operations; null on the CPU
+    // backends, which run penumbra/device_image.h's operations at once.
+    virtual DeviceQueue* device_queue() { return nullptr; }
     virtual std::string description() const = 0;
     virtual std::string isa() const { return {}; }
     virtual double program_build_seconds() const { return 0.0; }
@@ -219,6 +224,8 @@ pn_dims dims_of(const MomentTable& table);
 // `column_rows` rows of column totals and bands of `band_height` rows (the
 // schedule's choice): both backends' builds start from these.
 SatParams sat_params(const Image& depth, const MomentTable& table, int column_rows, int band_height);
+// The same from the geometry alone (a device-resident table's, powers z^k).
+SatParams sat_params(pn_dims depth, pn_dims table, int moments, int limbs, int column_rows, int band_height);
 // The join pass of a banded encoded build (kernels/moment_table.h's
 // sat_join_bands_*) reads the encoded table as a one-limb moment table.
 SatParams join_params(const EncodedSatParams& p);

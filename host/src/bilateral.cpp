@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "bilateral_setup.h"
 #include "host/backend/backend.h"
 #include "penumbra/error.h"
 
@@ -75,16 +76,16 @@ void check_output(const Image& mask, const Image& guide, const Image* normals, c
     require(!aliased, kOp, "the output must not be the mask or a guide image (the filter reads its neighbours)");
 }
 
-BilateralParams make_params(const Image& mask, const Image& guide, const Image* normals, const Image& out,
+BilateralParams make_params(pn_dims mask, int channels, pn_dims guide, const pn_dims* normals, pn_dims out,
                             const BilateralOptions& o)
 {
     BilateralParams p{};
-    p.mask = detail::dims_of(mask);
-    p.guide = detail::dims_of(guide);
-    p.normals = detail::dims_of(normals ? *normals : guide);
-    p.out = detail::dims_of(out);
+    p.mask = mask;
+    p.guide = guide;
+    p.normals = normals ? *normals : guide;
+    p.out = out;
     p.pass = p.out;
-    p.channels = mask.channels();
+    p.channels = channels;
     p.radius = o.radius;
     p.threshold = o.range == BilateralRange::Threshold;
     p.relative = o.relative;
@@ -181,6 +182,23 @@ void scale_image(Image& image, int exponent, bool clamp)
 
 }  // namespace
 
+namespace detail {
+
+BilateralSetup bilateral_setup(const BilateralOptions& options, pn_dims mask, int channels, pn_dims guide,
+                               const pn_dims* normals, pn_dims out)
+{
+    check_options(options);
+    Window window = window_of(options);
+    BilateralSetup setup{std::move(window.taps), std::move(window.weights),
+                         make_params(mask, channels, guide, normals, out, options)};
+    setup.params.taps = int(setup.weights.size() / 2);
+    return setup;
+}
+
+bool needs_overflow_guard(const Image& mask) { return overflow_guard_exponent(mask) > 0; }
+
+}  // namespace detail
+
 Image cross_bilateral(Context& context, const Image& mask, const Image& guide_depth, const BilateralOptions& options,
                       const Image* guide_normals)
 {
@@ -203,12 +221,13 @@ void cross_bilateral(Context& context, const Image& mask, const Image& guide_dep
         scale_image(out, k, true);
         return;
     }
-    const Window window = window_of(options);
-    BilateralParams p = make_params(mask, guide_depth, guide_normals, out, options);
-    p.taps = int(window.weights.size() / 2);
+    const pn_dims normals = detail::dims_of(guide_normals ? *guide_normals : guide_depth);
+    const detail::BilateralSetup setup =
+        detail::bilateral_setup(options, detail::dims_of(mask), mask.channels(), detail::dims_of(guide_depth),
+                                guide_normals ? &normals : nullptr, detail::dims_of(out));
     std::vector<int> bad_rows(std::size_t(mask.height()), 0);
-    context.impl().cross_bilateral(mask, guide_depth, guide_normals, window.taps, window.weights, options.separable, p,
-                                   out, bad_rows.data());
+    context.impl().cross_bilateral(mask, guide_depth, guide_normals, setup.taps, setup.weights, options.separable,
+                                   setup.params, out, bad_rows.data());
     if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end())
         report_non_finite(mask, guide_depth, guide_normals);
 }

@@ -4,6 +4,8 @@
 // exception crosses into C.
 #include "penumbra/penumbra.h"
 
+#include <algorithm>
+#include <initializer_list>
 #include <new>
 #include <string>
 #include <utility>
@@ -11,6 +13,7 @@
 
 #include "penumbra/bilateral.h"
 #include "penumbra/context.h"
+#include "penumbra/device_image.h"
 #include "penumbra/error.h"
 #include "penumbra/image_view.h"
 #include "penumbra/methods.h"
@@ -23,6 +26,14 @@ struct penumbra_context {
 struct penumbra_method {
     const penumbra::Method* method;
     penumbra::MethodSettings settings;
+};
+
+struct penumbra_device_image {
+    penumbra::DeviceImage image;
+};
+
+struct penumbra_device_table {
+    penumbra::DeviceMomentTable table;
 };
 
 namespace {
@@ -75,6 +86,24 @@ void require_pointer(const void* p, const char* function, const char* parameter)
     if (!p)
         throw Error(ErrorCategory::InvalidArgument, function, parameter,
                     std::string("'") + parameter + "' is NULL");
+}
+
+void require_pointers(const char* function, std::initializer_list<std::pair<const void*, const char*>> arguments)
+{
+    for (const auto& [p, parameter] : arguments) require_pointer(p, function, parameter);
+}
+
+// A device handle's creation: *handle cleared first, the context checked, then made.
+template <class Handle, class Make>
+penumbra_status create_handle(Handle** handle, const char* function, const char* parameter, penumbra_context* context,
+                              Make&& make) noexcept
+{
+    return guarded([&] {
+        require_pointer(handle, function, parameter);
+        *handle = nullptr;
+        require_pointer(context, function, "context");
+        *handle = new Handle{make(context->context)};
+    });
 }
 
 penumbra::ChannelLayout layout_of(penumbra_layout layout, const char* function, const char* parameter)
@@ -259,6 +288,117 @@ penumbra_status penumbra_blur(penumbra_context* context, const penumbra_image_vi
                                   view_of(guide_depth, kFunction, "guide-depth"),
                                   options ? blur_options(*options) : penumbra::BilateralOptions{},
                                   view_of(out, kFunction, "out"), guide_normals ? &normals : nullptr);
+    });
+}
+
+penumbra_status penumbra_device_image_upload(penumbra_context* context, const penumbra_image_view* image,
+                                             penumbra_device_image** device)
+{
+    constexpr const char* kFunction = "penumbra_device_image_upload";
+    return create_handle(device, kFunction, "device", context, [&](penumbra::Context& ctx) {
+        const penumbra::InputImage input(view_of(image, kFunction, "image"), kFunction, "image");
+        return penumbra::upload(ctx, input.image());
+    });
+}
+
+penumbra_status penumbra_device_image_create(penumbra_context* context, int width, int height, int channels,
+                                             penumbra_device_image** device)
+{
+    return create_handle(device, "penumbra_device_image_create", "device", context, [&](penumbra::Context& ctx) {
+        return penumbra::device_image(ctx, width, height, channels);
+    });
+}
+
+penumbra_status penumbra_device_image_wrap(penumbra_context* context, void* cl_mem, int width, int height,
+                                           int channels, size_t row_pitch, penumbra_device_image** device)
+{
+    return create_handle(device, "penumbra_device_image_wrap", "device", context, [&](penumbra::Context& ctx) {
+        return penumbra::wrap_opencl_buffer(ctx, static_cast<_cl_mem*>(cl_mem), width, height, channels, row_pitch);
+    });
+}
+
+void penumbra_device_image_destroy(penumbra_device_image* device) { delete device; }
+
+penumbra_status penumbra_device_image_download(penumbra_context* context, const penumbra_device_image* device,
+                                               const penumbra_output_view* out)
+{
+    constexpr const char* kFunction = "penumbra_device_image_download";
+    return guarded([&] {
+        require_pointers(kFunction, {{context, "context"}, {device, "device"}});
+        penumbra::OutputImage target(view_of(out, kFunction, "out"), kFunction, "out");
+        const penumbra::Image got = penumbra::download(context->context, device->image);
+        penumbra::require(got.width() == target.image().width() && got.height() == target.image().height() &&
+                              got.channels() == target.image().channels(),
+                          kFunction, "out", "the output view must have the device image's size and channels");
+        for (int c = 0; c < got.channels(); ++c)
+            for (int y = 0; y < got.height(); ++y)
+                std::copy(got.row(c, y), got.row(c, y) + got.width(), target.image().row(c, y));
+        target.commit();
+    });
+}
+
+penumbra_status penumbra_device_table_create(penumbra_context* context, int width, int height,
+                                             penumbra_device_table** table)
+{
+    return create_handle(table, "penumbra_device_table_create", "table", context, [&](penumbra::Context& ctx) {
+        return penumbra::device_moment_table(ctx, width, height);
+    });
+}
+
+void penumbra_device_table_destroy(penumbra_device_table* table) { delete table; }
+
+penumbra_status penumbra_enqueue_moment_table(penumbra_context* context, const penumbra_device_image* depth,
+                                              penumbra_device_table* table)
+{
+    return guarded([&] {
+        require_pointers("penumbra_enqueue_moment_table", {{context, "context"}, {depth, "depth"}, {table, "table"}});
+        penumbra::build_moment_table(context->context, depth->image, table->table);
+    });
+}
+
+penumbra_status penumbra_enqueue_shade(penumbra_context* context, const penumbra_method* method,
+                                       const penumbra_device_table* table, const penumbra_device_image* receivers,
+                                       penumbra_device_image* out)
+{
+    constexpr const char* kFunction = "penumbra_enqueue_shade";
+    return guarded([&] {
+        require_pointers(kFunction, {{context, "context"},
+                                     {method, "method"},
+                                     {table, "table"},
+                                     {receivers, "receivers"},
+                                     {out, "out"}});
+        const std::string name = method->method->name;
+        penumbra::require(name == "vsm" || name == "vssm", kFunction, "method",
+                          "'" + name + "' does not run on device images yet; vsm and vssm do");
+        const penumbra::MethodSettings& m = method->settings;
+        if (name == "vssm")
+            penumbra::vssm(context->context, table->table, receivers->image, {m.light_size, m.min_variance, m.bleed},
+                           out->image);
+        else
+            penumbra::vsm(context->context, table->table, receivers->image, {m.radius, m.min_variance, m.bleed},
+                          out->image);
+    });
+}
+
+penumbra_status penumbra_enqueue_blur(penumbra_context* context, const penumbra_device_image* mask,
+                                      const penumbra_device_image* guide_depth,
+                                      const penumbra_device_image* guide_normals,
+                                      const penumbra_blur_options* options, penumbra_device_image* out)
+{
+    return guarded([&] {
+        require_pointers("penumbra_enqueue_blur",
+                         {{context, "context"}, {mask, "mask"}, {guide_depth, "guide-depth"}, {out, "out"}});
+        penumbra::cross_bilateral(context->context, mask->image, guide_depth->image,
+                                  options ? blur_options(*options) : penumbra::BilateralOptions{}, out->image,
+                                  guide_normals ? &guide_normals->image : nullptr);
+    });
+}
+
+penumbra_status penumbra_finish(penumbra_context* context)
+{
+    return guarded([&] {
+        require_pointer(context, "penumbra_finish", "context");
+        penumbra::finish(context->context);
     });
 }
 

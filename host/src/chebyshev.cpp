@@ -5,6 +5,7 @@
 #include <string>
 
 #include "checked_lookup.h"
+#include "chebyshev_params.h"
 #include "visibility_output.h"
 #include "window_limits.h"
 #include "penumbra/error.h"
@@ -34,14 +35,18 @@ void check_table(const std::string& op, const MomentTable& table)
 }
 
 // `table` set by the caller: the table's dims, or the map's (direct sums).
-ChebyshevParams base_params(const Image& receivers, const Image& out, float min_variance, float bleed)
+ChebyshevParams base_params(pn_dims receivers, pn_dims out, float min_variance, float bleed)
 {
     ChebyshevParams p{};
-    p.receivers = detail::dims_of(receivers);
-    p.out = detail::dims_of(out);
+    p.receivers = receivers;
+    p.out = out;
     p.min_variance = min_variance;
     p.bleed = bleed;
     return p;
+}
+ChebyshevParams base_params(const Image& receivers, const Image& out, float min_variance, float bleed)
+{
+    return base_params(detail::dims_of(receivers), detail::dims_of(out), min_variance, bleed);
 }
 
 void check_output(const std::string& op, const Image& receivers, const Image& out)
@@ -53,6 +58,34 @@ void check_output(const std::string& op, const Image& receivers, const Image& ou
 
 }  // namespace
 
+namespace detail {
+
+ChebyshevParams vsm_table_params(const std::string& op, pn_dims table, Precision precision, int limbs,
+                                 pn_dims receivers, pn_dims out, const VsmOptions& options)
+{
+    check_filter(op, options.min_variance, options.bleed);
+    detail::check_radius(op, options.radius, precision);
+    ChebyshevParams p = base_params(receivers, out, options.min_variance, options.bleed);
+    p.table = table;
+    p.limbs = limbs;
+    p.radius = options.radius;
+    return p;
+}
+
+ChebyshevParams vssm_table_params(const std::string& op, pn_dims table, Precision precision, int limbs,
+                                  pn_dims receivers, pn_dims out, const VssmOptions& options)
+{
+    check_filter(op, options.min_variance, options.bleed);
+    ChebyshevParams p = base_params(receivers, out, options.min_variance, options.bleed);
+    p.table = table;
+    p.limbs = limbs;
+    p.light_size = options.light_size;
+    p.max_radius = detail::checked_search_radius(op, options.light_size, table.width, table.height, precision);
+    return p;
+}
+
+}  // namespace detail
+
 PN_ALLOCATING_VISIBILITY(vsm, MomentTable, VsmOptions)
 PN_ALLOCATING_VISIBILITY(vsm, Image, VsmOptions)
 PN_ALLOCATING_VISIBILITY(vssm, MomentTable, VssmOptions)
@@ -62,13 +95,9 @@ void vsm(Context& context, const MomentTable& table, const Image& receivers, con
     const std::string op = "vsm";
     check_table(op, table);
     check_receivers(op, receivers);
-    check_filter(op, options.min_variance, options.bleed);
-    detail::check_radius(op, options.radius, table.precision());
+    const ChebyshevParams p = detail::vsm_table_params(op, detail::dims_of(table), table.precision(), table.limbs(),
+                                                       detail::dims_of(receivers), detail::dims_of(out), options);
     check_output(op, receivers, out);
-    ChebyshevParams p = base_params(receivers, out, options.min_variance, options.bleed);
-    p.table = detail::dims_of(table);
-    p.limbs = table.limbs();
-    p.radius = options.radius;
     detail::checked_table_lookup<KernelId::vsm_float, KernelId::vsm_exact>(context.impl(), op, table, receivers, p,
                                                                            out);
 }
@@ -92,11 +121,8 @@ void vssm(Context& context, const MomentTable& table, const Image& receivers, co
     check_receivers(op, receivers);
     check_filter(op, options.min_variance, options.bleed);
     check_output(op, receivers, out);
-    ChebyshevParams p = base_params(receivers, out, options.min_variance, options.bleed);
-    p.table = detail::dims_of(table);
-    p.limbs = table.limbs();
-    p.light_size = options.light_size;
-    p.max_radius = detail::checked_search_radius(op, options.light_size, table);
+    const ChebyshevParams p = detail::vssm_table_params(op, detail::dims_of(table), table.precision(), table.limbs(),
+                                                        detail::dims_of(receivers), detail::dims_of(out), options);
     detail::checked_table_lookup<KernelId::vssm_float, KernelId::vssm_exact>(context.impl(), op, table, receivers, p,
                                                                              out);
 }

@@ -162,6 +162,24 @@ std::future<Context> start_context(ContextOptions options, std::function<void(Co
     });
 }
 
+Context::Context(std::unique_ptr<detail::BackendImpl> impl, Backend backend, std::string reason)
+    : impl_(std::move(impl)), backend_(backend), reason_(std::move(reason))
+{
+}
+
+Context Context::from_opencl(_cl_context* context, _cl_command_queue* queue)
+{
+#if PENUMBRA_OPENCL
+    return Context(cl_backend::make_opencl_backend(context, queue), Backend::OpenCL,
+                   "the caller's cl_context and cl_command_queue (Context::from_opencl)");
+#else
+    (void)context;
+    (void)queue;
+    throw Error(ErrorCategory::Unavailable, "Context::from_opencl",
+                "this build of penumbra has no OpenCL backend (configure with -DPENUMBRA_OPENCL=ON)");
+#endif
+}
+
 Context::~Context() = default;
 Context::Context(Context&&) noexcept = default;
 Context& Context::operator=(Context&&) noexcept = default;

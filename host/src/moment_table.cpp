@@ -58,6 +58,16 @@ PlaneSlot plane_slot(int plane, int limbs)
 
 }  // namespace
 
+MomentTableLayout moment_table_layout(int width, int height, int planes)
+{
+    MomentTableLayout layout;
+    layout.pitch = table_pitch(width);
+    layout.plane_pitch = std::size_t(layout.pitch) * std::size_t(height + 1);
+    layout.storage_elements = kLead + layout.plane_pitch * std::size_t(planes);
+    layout.origin_offset_bytes = kLead * kElementSize;
+    return layout;
+}
+
 MomentTable::MomentTable(int width, int height, int moments, Precision precision, int limbs, TableValues values)
     : width_(width), height_(height), pitch_(table_pitch(width)),
       plane_pitch_(std::size_t(table_pitch(width)) * std::size_t(height + 1)), moments_(moments),
@@ -94,9 +104,15 @@ void MomentTable::zero_borders()
     });
 }
 
-std::size_t MomentTable::storage_elements() const noexcept { return kLead + plane_pitch_ * std::size_t(planes()); }
+std::size_t MomentTable::storage_elements() const noexcept
+{
+    return moment_table_layout(width_, height_, planes()).storage_elements;
+}
 
-std::size_t MomentTable::origin_offset_bytes() const noexcept { return kLead * kElementSize; }
+std::size_t MomentTable::origin_offset_bytes() const noexcept
+{
+    return moment_table_layout(width_, height_, planes()).origin_offset_bytes;
+}
 
 float* MomentTable::float_origin() noexcept { return reinterpret_cast<float*>(storage_.data()) + kLead; }
 const float* MomentTable::float_origin() const noexcept
@@ -193,17 +209,23 @@ pn_dims dims_of(const MomentTable& table)
 
 SatParams sat_params(const Image& depth, const MomentTable& table, int column_rows, int band_height)
 {
-    SatParams p{};
-    p.depth = dims_of(depth);
-    p.table = dims_of(table);
-    p.moments = table.moments();
-    p.limbs = table.limbs();
+    SatParams p = sat_params(dims_of(depth), dims_of(table), table.moments(), table.limbs(), column_rows, band_height);
     p.encoding = table.values().kind;
     p.exponent_positive = table.values().positive;
     p.exponent_negative = table.values().negative;
+    return p;
+}
+
+SatParams sat_params(pn_dims depth, pn_dims table, int moments, int limbs, int column_rows, int band_height)
+{
+    SatParams p{};
+    p.depth = depth;
+    p.table = table;
+    p.moments = moments;
+    p.limbs = limbs;
     p.band_height = band_height;
-    const int pitch = padded_pitch(depth.width());
-    p.columns = {depth.width(), column_rows, pitch, pitch * column_rows};
+    const int pitch = padded_pitch(depth.width);
+    p.columns = {depth.width, column_rows, pitch, pitch * column_rows};
     return p;
 }
 

@@ -20,9 +20,14 @@ void check_radius(const std::string& operation, int radius, Precision precision)
 
 int checked_search_radius(const std::string& operation, float light_size, const MomentTable& table)
 {
+    return checked_search_radius(operation, light_size, table.width(), table.height(), table.precision());
+}
+
+int checked_search_radius(const std::string& operation, float light_size, int width, int height, Precision precision)
+{
     check(kLightSizeRange, light_size, operation);
-    const int extent = std::max(table.width(), table.height());
-    if (table.precision() == Precision::Float) return extent;
+    const int extent = std::max(width, height);
+    if (precision == Precision::Float) return extent;
     const int max_radius = kExactMaxRadius - 1;
     const float search_half = light_size * 0.5f * float(extent);
     require(search_half <= float(max_radius), operation, kLightSizeRange.name,

@@ -17,5 +17,7 @@ void check_radius(const std::string& operation, int radius, Precision precision)
 // interpolation slivers within 255 texels, so light-size is refused where
 // the blocker search would need more. Checks kLightSizeRange first.
 int checked_search_radius(const std::string& operation, float light_size, const MomentTable& table);
+// The same from the table's shape (a device-resident table's).
+int checked_search_radius(const std::string& operation, float light_size, int width, int height, Precision precision);
 
 }  // namespace penumbra::detail

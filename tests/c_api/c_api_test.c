@@ -1,7 +1,8 @@
 /* The C API (penumbra/penumbra.h) from a C program, on every backend the
  * machine has: shading through several methods with options, a 16-bit map,
  * interleaved receivers at a padded pitch and the blur give bit for bit what
- * the C++ API gives on the same input (cpp_result.cpp); bad input returns
+ * the C++ API gives on the same input (cpp_result.cpp), and the device-resident
+ * chain gives what those calls give; bad input returns
  * its status code, names its parameter and leaves a message. Exit 0 when
  * every check passes. */
 #include <math.h>
@@ -143,6 +144,69 @@ static void blur_matches_cpp(const char* backend_name, penumbra_context* context
 
 /* A call that must fail with `status`, naming `parameter`, with a message holding `says`. */
 static void expect_failure(penumbra_status got, penumbra_status status, const char* parameter, const char* says,
+                           const char* what);
+
+/* build -> vsm -> blur on device images, one finish, equals the same chain
+ * through penumbra_shade and penumbra_blur on views (itself checked against
+ * the C++ API above), bit for bit. */
+static void device_chain_matches_views(const char* backend_name, penumbra_context* context)
+{
+    const char* names[] = {"radius"};
+    const char* values[] = {"2"};
+    penumbra_method* vsm = NULL;
+    CHECK(penumbra_method_create("vsm", names, values, 1, &vsm) == PENUMBRA_OK, "vsm: %s", penumbra_last_error());
+    static float guide[W * H], visibility[W * H], expected[W * H], got[W * H];
+    for (int i = 0; i < W * H; ++i) guide[i] = receivers_planar[2 * W * H + i];
+    const penumbra_image_view m = map_view();
+    const penumbra_image_view r = {receivers_planar, W, H, 3, 0, 0, PENUMBRA_PLANAR, PENUMBRA_FLOAT32};
+    const penumbra_image_view g = {guide, W, H, 1, 0, 0, PENUMBRA_PLANAR, PENUMBRA_FLOAT32};
+    const penumbra_image_view v = {visibility, W, H, 1, 0, 0, PENUMBRA_PLANAR, PENUMBRA_FLOAT32};
+    const penumbra_output_view vis_out = output_view(visibility, 1), want = output_view(expected, 1),
+                               out = output_view(got, 1);
+    CHECK(penumbra_shade(context, vsm, &m, &r, &vis_out) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_blur(context, &v, &g, NULL, NULL, &want) == PENUMBRA_OK, "%s", penumbra_last_error());
+
+    penumbra_device_image *depth = NULL, *rx = NULL, *gd = NULL, *vis = NULL, *soft = NULL;
+    penumbra_device_table* table = NULL;
+    CHECK(penumbra_device_image_upload(context, &m, &depth) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_image_upload(context, &r, &rx) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_image_upload(context, &g, &gd) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_image_create(context, W, H, 1, &vis) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_image_create(context, W, H, 1, &soft) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_table_create(context, MAP_W, MAP_H, &table) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_enqueue_moment_table(context, depth, table) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_enqueue_shade(context, vsm, table, rx, vis) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_enqueue_blur(context, vis, gd, NULL, NULL, soft) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_finish(context) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_image_download(context, soft, &out) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(same_floats(got, expected, W * H), "device chain on %s: differs from the views' chain", backend_name);
+
+    /* Bad input: another method, a wrong output size, a foreign cl_mem on a CPU context, NULL handles. */
+    penumbra_method* pcf = NULL;
+    CHECK(penumbra_method_create("pcf", NULL, NULL, 0, &pcf) == PENUMBRA_OK, "%s", penumbra_last_error());
+    expect_failure(penumbra_enqueue_shade(context, pcf, table, rx, vis), PENUMBRA_INVALID_ARGUMENT, "method", "vssm",
+                   "a method that is not device-resident");
+    expect_failure(penumbra_enqueue_shade(context, vsm, table, rx, rx), PENUMBRA_INVALID_ARGUMENT,
+                   "out", "1-channel", "a 3-channel output");
+    expect_failure(penumbra_enqueue_blur(context, NULL, gd, NULL, NULL, soft), PENUMBRA_INVALID_ARGUMENT, "mask",
+                   "NULL", "a NULL mask");
+    if (strncmp(backend_name, "opencl", 6) != 0) {
+        int not_a_buffer = 0;
+        penumbra_device_image* none = NULL;
+        expect_failure(penumbra_device_image_wrap(context, &not_a_buffer, W, H, 1, 0, &none),
+                       PENUMBRA_INVALID_ARGUMENT, "buffer", "cl_mem", "a cl_mem on a CPU context");
+    }
+    penumbra_method_destroy(pcf);
+    penumbra_device_image_destroy(depth);
+    penumbra_device_image_destroy(rx);
+    penumbra_device_image_destroy(gd);
+    penumbra_device_image_destroy(vis);
+    penumbra_device_image_destroy(soft);
+    penumbra_device_table_destroy(table);
+    penumbra_method_destroy(vsm);
+}
+
+static void expect_failure(penumbra_status got, penumbra_status status, const char* parameter, const char* says,
                            const char* what)
 {
     CHECK(got == status, "%s: status %s, expected %s (%s)", what, penumbra_status_name(got),
@@ -237,6 +301,7 @@ int main(void)
         const penumbra_image_view depth16 = {map16, MAP_W, MAP_H, 1, 0, 0, PENUMBRA_PLANAR, PENUMBRA_UINT16};
         shade_matches_cpp(kBackends[b].name, context, &kMethods[0], map16_values, depth16);
         blur_matches_cpp(kBackends[b].name, context);
+        device_chain_matches_views(kBackends[b].name, context);
         bad_input(context);
         penumbra_context_destroy(context);
     }

@@ -20,6 +20,9 @@
 #include <string>
 #include <vector>
 
+struct _cl_context;        // cl_context, as CL/cl.h declares it
+struct _cl_command_queue;  // cl_command_queue
+
 namespace penumbra {
 
 enum class Backend { Auto, Simd, OpenCL, Scalar };
@@ -54,7 +57,16 @@ public:
 
     detail::BackendImpl& impl();
 
+    // An OpenCL context over the caller's cl_context and in-order
+    // cl_command_queue (interop: penumbra/device_image.h); the device is the
+    // queue's. penumbra retains both and releases them when the Context goes.
+    // Error(InvalidArgument) for a null or mismatched pair or an out-of-order
+    // queue, Error(Unavailable) in a build without OpenCL.
+    static Context from_opencl(_cl_context* context, _cl_command_queue* queue);
+
 private:
+    Context(std::unique_ptr<detail::BackendImpl> impl, Backend backend, std::string reason);
+
     std::unique_ptr<detail::BackendImpl> impl_;
     Backend backend_ = Backend::Simd;
     std::string reason_;

@@ -36,6 +36,16 @@ struct TableValues {
     float positive = 0.0f, negative = 0.0f;
 };
 
+// Where a table of this shape keeps its elements (4 bytes each): what a
+// MomentTable allocates, and a device-resident one (penumbra/device_image.h).
+struct MomentTableLayout {
+    int pitch = 0;                        // elements between rows
+    std::size_t plane_pitch = 0;          // elements between planes
+    std::size_t storage_elements = 0;     // the lead before the origin included
+    std::size_t origin_offset_bytes = 0;  // from the storage's start to the origin
+};
+MomentTableLayout moment_table_layout(int width, int height, int planes);
+
 class MomentTable {
 public:
     MomentTable() = default;

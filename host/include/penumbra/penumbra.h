@@ -139,6 +139,50 @@ penumbra_status penumbra_blur(penumbra_context* context, const penumbra_image_vi
                               const penumbra_image_view* guide_depth, const penumbra_image_view* guide_normals,
                               const penumbra_blur_options* options, const penumbra_output_view* out);
 
+/* Device-resident images and tables (penumbra/device_image.h,
+ * docs/integration.md "Device residency"): on OpenCL their storage is a
+ * buffer on the context's device and the penumbra_enqueue_* calls return
+ * without waiting; penumbra_finish() waits and returns the status of bad data
+ * the kernels found (PENUMBRA_INVALID_DATA). On the CPU backends they are
+ * host memory and every call runs at once. A handle is used with the context
+ * that made it and destroyed before it. */
+typedef struct penumbra_device_image penumbra_device_image;
+typedef struct penumbra_device_table penumbra_device_table;
+
+/* One upload of a float32 view (a copy first where the view's layout is not
+ * planar float32, as penumbra_shade's inputs). */
+penumbra_status penumbra_device_image_upload(penumbra_context* context, const penumbra_image_view* image,
+                                             penumbra_device_image** device);
+/* Uninitialised, for an operation to write. */
+penumbra_status penumbra_device_image_create(penumbra_context* context, int width, int height, int channels,
+                                             penumbra_device_image** device);
+/* The caller's cl_mem (as void*), planes of `height` rows `row_pitch` bytes
+ * apart (0: packed); retained until the handle is destroyed. */
+penumbra_status penumbra_device_image_wrap(penumbra_context* context, void* cl_mem, int width, int height,
+                                           int channels, size_t row_pitch, penumbra_device_image** device);
+void penumbra_device_image_destroy(penumbra_device_image* device); /* NULL: nothing */
+/* Waits (penumbra_finish), then downloads into `out` (the image's size and channels). */
+penumbra_status penumbra_device_image_download(penumbra_context* context, const penumbra_device_image* device,
+                                               const penumbra_output_view* out);
+
+/* An exact moment table of a width x height map (VSM's: 2 moments). */
+penumbra_status penumbra_device_table_create(penumbra_context* context, int width, int height,
+                                             penumbra_device_table** table);
+void penumbra_device_table_destroy(penumbra_device_table* table); /* NULL: nothing */
+
+penumbra_status penumbra_enqueue_moment_table(penumbra_context* context, const penumbra_device_image* depth,
+                                              penumbra_device_table* table);
+/* The lookup step of `method` on a device table: "vsm" or "vssm", with the
+ * method's options; another method is PENUMBRA_INVALID_ARGUMENT. */
+penumbra_status penumbra_enqueue_shade(penumbra_context* context, const penumbra_method* method,
+                                       const penumbra_device_table* table, const penumbra_device_image* receivers,
+                                       penumbra_device_image* out);
+penumbra_status penumbra_enqueue_blur(penumbra_context* context, const penumbra_device_image* mask,
+                                      const penumbra_device_image* guide_depth,
+                                      const penumbra_device_image* guide_normals,
+                                      const penumbra_blur_options* options, penumbra_device_image* out);
+penumbra_status penumbra_finish(penumbra_context* context);
+
 #ifdef __cplusplus
 }
 #endif
