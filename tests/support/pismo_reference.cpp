@@ -6,6 +6,8 @@
 #include <optional>
 #include <cstdint>
 
+#include "penumbra/reference/ground_truth.h"
+
 namespace penumbra::testing {
 namespace {
 
@@ -55,15 +57,34 @@ struct Receiver {
 
 // Whether a layer of `map` at q's pixel lies nearer than P's depth (minus the
 // bias); P's own solid blocks a map whose vertex its surface faces away from.
+// With options.exact_tests, the ray from the map's vertex through q itself
+// answers (a caster nearer than the same limit), not the ray through the
+// centre of q's pixel.
 bool occludes(const LayeredDepthMap& map, Vec3 q, const Receiver& r)
 {
-    if (r.faces_away(vec(map.camera().position))) return true;
+    const Vec3 vertex = vec(map.camera().position);
+    if (r.faces_away(vertex)) return true;
     const double bias = r.bias_texels(map);
     const std::optional<Landing> at_q = land(map, q, bias);
     const std::optional<Landing> at_p = land(map, r.p, bias);
     if (!at_q || !at_p) return false;  // outside the map: no caster was seen there
+    const double limit = at_p->depth - at_p->bias;
+    if (r.o.exact_tests) return r.o.exact_casters->occluded({vertex, normalize(q - vertex)}, 0, limit);
     const auto layers = map.layers(at_q->x, at_q->y);
-    return !layers.empty() && double(layers.front()) < at_p->depth - at_p->bias;
+    return !layers.empty() && double(layers.front()) < limit;
+}
+
+// With options.exact_estimate: the putative occluder of the ray to `light` is
+// the caster crossing nearest P on it (traced from P lifted as the truth
+// lifts it), or P itself when the ray is clear.
+Vec3 exact_occluder(Vec3 light, const Receiver& r)
+{
+    const double lift = reference::kNormalOffset * (1 + max_abs_component(r.p));
+    const Vec3 origin = r.has_normal() ? r.p + normalize(r.n) * lift : r.p;
+    const Vec3 to_light = light - origin;
+    const std::optional<reference::Hit> hit =
+        r.o.exact_casters->closest_hit({origin, normalize(to_light)}, lift, length(to_light));
+    return hit ? origin + normalize(to_light) * hit->t : r.p;
 }
 
 // The first estimate of one map: the depth of the farthest bled layer nearer
@@ -156,7 +177,9 @@ double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoRefer
                         weight += w[k];
                     }
                 const Vec3 to_p = p - light;
-                const Vec3 occluder = weight > 0 ? light + to_p * (distance / weight / length(to_p)) : p;
+                const Vec3 occluder = o.exact_estimate ? exact_occluder(light, r)
+                                      : weight > 0     ? light + to_p * (distance / weight / length(to_p))
+                                                       : p;
                 // A corner whose vertex P's surface faces away from sees P's own
                 // solid, not what this ray (above P's tangent plane) passes: the
                 // other corners answer, renormalised; none left: the ray is lit.
