@@ -171,13 +171,13 @@ int main(int argc, char** argv)
                              "[--centred-grids] OUT.csv\n");
         return 2;
     }
-    std::printf("pismo_acceptance: %dx%d receivers, truth %d^2 strata (noise against %d^2), Pismo %d rays\n\n",
-                c.view_width, c.view_height, c.strata, 2 * c.strata, c.strata * c.strata);
+    std::printf("pismo_acceptance: %dx%d receivers, truth %d^2 strata (noise against %d^2), Pismo %d rays, grids %s\n\n",
+                c.view_width, c.view_height, c.strata, 2 * c.strata, c.strata * c.strata,
+                c.shift_grids ? "shifted (pismo_subtexel_shift)" : "centred on the fixation point");
     std::printf("| scene | cameras | map | level | maps | Pismo (layered) | averaged hard shadows | Pismo (maximum depth) "
                 "| truth noise | Pismo, planes | averaged, planes | truth noise, planes | maps MB | render s |\n"
                 "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::vector<Row> rows;
-    std::printf("grids: %s\n\n", c.shift_grids ? "shifted (pismo_subtexel_shift)" : "centred on the fixation point");
     for (const std::string& name : c.scenes) {
         const reference::Scene scene = reference::builtin_scene(name);
         const SceneTruth t = truth_for(scene, c);
