@@ -12,11 +12,13 @@
 // exact_tests, exact_estimate), and the mean signed error (below 0: too dark).
 // Float64 (tests/support/pismo_reference.h), no kernel. Figures, not checks.
 //
-// usage: pismo_error_classes [LEVEL [MAP_SIZE [BIAS_TEXELS [NORMALS [SCENES [SHIFTED]]]]]]
-//        (defaults 3, 384, 2, 0, contact,overlap,fence, 1; fitted cameras;
+// usage: pismo_error_classes [LEVEL [MAP_SIZE [BIAS_TEXELS [NORMALS [SCENES [SHIFTED [LIFT]]]]]]]
+//        (defaults 3, 384, 2, 0, contact,overlap,fence, 1, 0; fitted cameras;
 //        NORMALS 1: the receiver's own surface takes part, docs/pismo.md
 //        "The receiver's own surface"; SHIFTED 0: every map's grid centred on
-//        the fixation point, as before LayeredMapOptions::shift_grids)
+//        the fixation point, as before LayeredMapOptions::shift_grids; LIFT
+//        above 0: a normal offset of that many texels instead of the slope
+//        term, PismoReferenceOptions::lift_texels, measured, not the method)
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -151,7 +153,8 @@ void report_sources(const reference::Scene& scene, const reference::PismoMaps& m
     std::fflush(stdout);
 }
 
-void report(const reference::Scene& scene, int level, int size, double bias_texels, bool normals, bool shifted)
+void report(const reference::Scene& scene, int level, int size, double bias_texels, bool normals, bool shifted,
+            double lift)
 {
     const reference::Receivers rx = reference::render_receivers(scene, 64, 48);
     const Image truth = reference::ground_truth(scene, rx, {32});
@@ -163,6 +166,7 @@ void report(const reference::Scene& scene, int level, int size, double bias_texe
     testing::PismoReferenceOptions po;
     po.rays = 1024;
     po.bias_texels = bias_texels;
+    po.lift_texels = lift;
     const testing::PismoEstimates e = testing::pismo_estimates(maps, rx, po, normals);
     const reference::PreparedScene prepared(scene);
     std::array<Tally, 4> tally{};
@@ -192,6 +196,7 @@ void report(const reference::Scene& scene, int level, int size, double bias_texe
     std::printf("\n%s, level %d (%zu maps), fitted %d^2, bias %.1f texels%s, grids %s\n\n", scene.name.c_str(), level,
                 maps.maps.size(), size, bias_texels, normals ? ", with the receiver's own surface" : "",
                 shifted ? "shifted" : "centred");
+    if (lift > 0) std::printf("(a normal offset of %.2f texels instead of the slope term: measured, not the method)\n\n", lift);
     std::printf("| receivers | count | Pismo RMSE | averaged RMSE | share of Pismo's squared error |");
     for (const char* cause : kCauses) std::printf(" %s |", cause);
     std::printf("\n|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -219,8 +224,9 @@ int main(int argc, char** argv)
     std::istringstream names(argc > 5 ? argv[5] : "contact,overlap,fence");
     for (std::string name; std::getline(names, name, ',');) scenes.push_back(name);
     const bool shifted = argc <= 6 || std::atoi(argv[6]) != 0;
+    const double lift = argc > 7 ? std::atof(argv[7]) : 0.0;
     std::printf("pismo_error_classes: 64x48 receivers, truth 32^2 strata, Pismo 1024 rays; hard decisions: "
                 "%% of (receiver, map) pairs of the class\n");
-    for (const std::string& name : scenes) report(reference::builtin_scene(name), level, size, bias, normals, shifted);
+    for (const std::string& name : scenes) report(reference::builtin_scene(name), level, size, bias, normals, shifted, lift);
     return 0;
 }
