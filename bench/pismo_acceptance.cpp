@@ -14,7 +14,11 @@
 // no kernel. Prints a Markdown table and writes every row to a CSV for
 // bench/pismo_acceptance_chart.py. Figures, not checks.
 //
-// usage: pismo_acceptance [--quick] OUT.csv
+// usage: pismo_acceptance [--quick] [--scenes A,B] [--settings fitted:1024:3,...] [--centred-grids] OUT.csv
+//   --scenes        a subset of contact, overlap, fence
+//   --settings      cameras:map size:highest level, instead of the four above
+//   --centred-grids every map's pixel grid centred on the fixation point, as
+//                   before the shifted grids (LayeredMapOptions::shift_grids)
 //
 // The truth has S x S strata per receiver; its noise is its RMSE against the
 // truth at 2S x 2S (4x the rays), which holds about sqrt(1 + 1/4) times the
@@ -24,6 +28,8 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,7 +44,7 @@ using namespace penumbra;
 namespace {
 
 struct MapSetting {
-    const char* cameras;  // "frustum" or "fitted"
+    std::string cameras;  // "frustum" or "fitted"
     int size;
     int max_level;  // 289 maps of 1024^2 would be about 7 GB
 };
@@ -46,10 +52,32 @@ struct MapSetting {
 struct Config {
     int view_width = 64, view_height = 48;
     int strata = 32;
-    std::vector<const char*> scenes = {"contact", "overlap", "fence"};
+    std::vector<std::string> scenes = {"contact", "overlap", "fence"};
     std::vector<MapSetting> settings = {{"frustum", 384, 3}, {"fitted", 384, 4}, {"fitted", 512, 4},
                                          {"fitted", 1024, 3}};
+    bool shift_grids = true;
 };
+
+std::vector<std::string> split(const std::string& list, char separator)
+{
+    std::vector<std::string> items;
+    std::istringstream in(list);
+    for (std::string item; std::getline(in, item, separator);) items.push_back(item);
+    return items;
+}
+
+// "fitted:1024:3" (cameras, map size, highest level), comma-separated.
+std::vector<MapSetting> parse_settings(const std::string& list)
+{
+    std::vector<MapSetting> settings;
+    for (const std::string& item : split(list, ',')) {
+        const std::vector<std::string> parts = split(item, ':');
+        if (parts.size() != 3 || (parts[0] != "fitted" && parts[0] != "frustum"))
+            throw std::invalid_argument("a setting is fitted|frustum:SIZE:LEVEL, not '" + item + "'");
+        settings.push_back({parts[0], std::stoi(parts[1]), std::stoi(parts[2])});
+    }
+    return settings;
+}
 
 struct Row {
     std::string scene, cameras;
@@ -80,7 +108,8 @@ Row measure(const reference::Scene& scene, const SceneTruth& t, const MapSetting
 {
     reference::LayeredMapOptions mo;
     mo.size = setting.size;
-    const bool fitted = std::string(setting.cameras) == "fitted";
+    mo.shift_grids = c.shift_grids;
+    const bool fitted = setting.cameras == "fitted";
     const std::vector<reference::Vec3> region = fitted ? reference::receiver_region(t.rx) : std::vector<reference::Vec3>{};
     const auto start = std::chrono::steady_clock::now();
     const reference::PismoMaps maps = reference::render_pismo_maps(scene, level, mo, region);
@@ -127,21 +156,29 @@ int main(int argc, char** argv)
         if (arg == "--quick") {
             c.view_width = 32, c.view_height = 24, c.strata = 8;
             c.settings = {{"frustum", 128, 1}, {"fitted", 128, 1}};
+        } else if (arg == "--scenes" && i + 1 < argc) {
+            c.scenes = split(argv[++i], ',');
+        } else if (arg == "--settings" && i + 1 < argc) {
+            c.settings = parse_settings(argv[++i]);
+        } else if (arg == "--centred-grids") {
+            c.shift_grids = false;
         } else {
             csv = arg;
         }
     }
     if (csv.empty()) {
-        std::fprintf(stderr, "usage: pismo_acceptance [--quick] OUT.csv\n");
+        std::fprintf(stderr, "usage: pismo_acceptance [--quick] [--scenes A,B] [--settings fitted:1024:3,...] "
+                             "[--centred-grids] OUT.csv\n");
         return 2;
     }
-    std::printf("pismo_acceptance: %dx%d receivers, truth %d^2 strata (noise against %d^2), Pismo %d rays\n\n",
-                c.view_width, c.view_height, c.strata, 2 * c.strata, c.strata * c.strata);
+    std::printf("pismo_acceptance: %dx%d receivers, truth %d^2 strata (noise against %d^2), Pismo %d rays, grids %s\n\n",
+                c.view_width, c.view_height, c.strata, 2 * c.strata, c.strata * c.strata,
+                c.shift_grids ? "shifted (pismo_subtexel_shift)" : "centred on the fixation point");
     std::printf("| scene | cameras | map | level | maps | Pismo (layered) | averaged hard shadows | Pismo (maximum depth) "
                 "| truth noise | Pismo, planes | averaged, planes | truth noise, planes | maps MB | render s |\n"
                 "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::vector<Row> rows;
-    for (const char* name : c.scenes) {
+    for (const std::string& name : c.scenes) {
         const reference::Scene scene = reference::builtin_scene(name);
         const SceneTruth t = truth_for(scene, c);
         for (const MapSetting& setting : c.settings)

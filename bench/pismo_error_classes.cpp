@@ -6,16 +6,28 @@
 // truth traces it (from P lifted by kNormalOffset along its normal). A wrong
 // decision is acne (the map occludes, the segment is clear) or a leak (the
 // reverse); each is split by what the map holds at P's pixel.
+// Then each class's error split by its source (docs/pismo.md, "Where fence's
+// error comes from"): the same test with a part answered by tracing the
+// casters, as maps of unlimited resolution would (PismoReferenceOptions::
+// exact_tests, exact_estimate), and the mean signed error (below 0: too dark).
 // Float64 (tests/support/pismo_reference.h), no kernel. Figures, not checks.
 //
-// usage: pismo_error_classes [LEVEL [MAP_SIZE [BIAS_TEXELS [NORMALS]]]]
-//        (defaults 3, 384, 2, 0; fitted cameras; NORMALS 1: the receiver's own
-//        surface takes part, docs/pismo.md "The receiver's own surface")
+// usage: pismo_error_classes [LEVEL [MAP_SIZE [BIAS_TEXELS [NORMALS [SCENES [SHIFTED [LIFT]]]]]]]
+//        (defaults 3, 384, 2, 0, contact,overlap,fence, 1, 0; fitted cameras;
+//        NORMALS 1: the receiver's own surface takes part, docs/pismo.md
+//        "The receiver's own surface"; SHIFTED 0: every map's grid centred on
+//        the fixation point, as before LayeredMapOptions::shift_grids; LIFT
+//        above 0: a normal offset of that many texels instead of the slope
+//        term, PismoReferenceOptions::lift_texels, measured, not the method)
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 #include <string>
+#include <vector>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "penumbra/reference/ground_truth.h"
 #include "penumbra/reference/pismo_maps.h"
@@ -74,26 +86,99 @@ int wrong_decision(const LayeredDepthMap& map, Vec3 p, Vec3 n, const testing::Pi
     return layers.front() < depth ? 3 : 4;
 }
 
-void report(const reference::Scene& scene, int level, int size, double bias_texels, bool normals)
+// The error's sources: which parts of the test the maps answer.
+struct Variant {
+    const char* name;
+    bool averaged, exact_tests, exact_estimate;
+};
+constexpr Variant kVariants[] = {{"Pismo", false, false, false},
+                                 {"Pismo, exact tests", false, true, false},
+                                 {"Pismo, exact estimate", false, false, true},
+                                 {"Pismo, both exact", false, true, true},
+                                 {"averaged", true, false, false},
+                                 {"averaged, exact tests", true, true, false}};
+
+// One variant's estimate at every valid receiver.
+Image estimate(const reference::PismoMaps& maps, const reference::Receivers& rx, testing::PismoReferenceOptions o,
+               const reference::PreparedScene& casters, const Variant& v, bool normals)
+{
+    o.exact_casters = &casters;
+    o.exact_tests = v.exact_tests;
+    o.exact_estimate = v.exact_estimate;
+    const auto layered = testing::PismoReferenceMaps::layered(maps);
+    Image out(rx.width(), rx.height(), 1);
+    tbb::parallel_for(tbb::blocked_range<int>(0, rx.height()), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y != rows.end(); ++y)
+            for (int x = 0; x < rx.width(); ++x) {
+                if (rx.mask.at(0, x, y) == 0) continue;
+                const Vec3 p = at3(rx.world_position, x, y), n = normals ? at3(rx.normal, x, y) : Vec3{};
+                out.at(0, x, y) = float(v.averaged ? testing::averaged_hard_shadows(layered, p, o, n)
+                                                   : testing::pismo_visibility(layered, p, o, n));
+            }
+    });
+    return out;
+}
+
+// Per class and variant: RMSE and mean signed error against the truth.
+void report_sources(const reference::Scene& scene, const reference::PismoMaps& maps, const reference::Receivers& rx,
+                    const Image& truth, const Image& classes, const testing::PismoReferenceOptions& o, bool normals)
+{
+    const reference::PreparedScene casters(reference::pismo_casters(scene));
+    constexpr int kCount = int(std::size(kVariants));
+    std::array<std::array<double, kCount>, 4> sq{}, signed_sum{};
+    std::array<int, 4> count{};
+    for (int k = 0; k < kCount; ++k) {
+        const Image e = estimate(maps, rx, o, casters, kVariants[k], normals);
+        for (int y = 0; y < rx.height(); ++y)
+            for (int x = 0; x < rx.width(); ++x) {
+                if (rx.mask.at(0, x, y) == 0) continue;
+                const auto c = std::size_t(classes.at(0, x, y));
+                const double d = e.at(0, x, y) - truth.at(0, x, y);
+                sq[c][std::size_t(k)] += d * d;
+                signed_sum[c][std::size_t(k)] += d;
+                count[c] += k == 0;
+            }
+    }
+    std::printf("\nthe error's sources (RMSE / mean signed error; exact: traced as by maps of unlimited resolution)\n\n"
+                "| receivers |");
+    for (const Variant& v : kVariants) std::printf(" %s |", v.name);
+    std::printf("\n|---|---|---|---|---|---|---|\n");
+    for (std::size_t c = 0; c < count.size(); ++c) {
+        if (count[c] == 0) continue;
+        std::printf("| %s |", kClasses[c]);
+        for (std::size_t k = 0; k < std::size_t(kCount); ++k)
+            std::printf(" %.4f / %+.4f |", std::sqrt(sq[c][k] / count[c]), signed_sum[c][k] / count[c]);
+        std::printf("\n");
+    }
+    std::fflush(stdout);
+}
+
+void report(const reference::Scene& scene, int level, int size, double bias_texels, bool normals, bool shifted,
+            double lift)
 {
     const reference::Receivers rx = reference::render_receivers(scene, 64, 48);
     const Image truth = reference::ground_truth(scene, rx, {32});
     const Image planes = testing::receivers_on_planes(scene, rx, true);
     reference::LayeredMapOptions mo;
     mo.size = size;
+    mo.shift_grids = shifted;
     const reference::PismoMaps maps = reference::render_pismo_maps(scene, level, mo, reference::receiver_region(rx));
     testing::PismoReferenceOptions po;
     po.rays = 1024;
     po.bias_texels = bias_texels;
+    po.lift_texels = lift;
     const testing::PismoEstimates e = testing::pismo_estimates(maps, rx, po, normals);
     const reference::PreparedScene prepared(scene);
     std::array<Tally, 4> tally{};
+    Image classes(rx.width(), rx.height(), 1);
     double total_sq = 0;
     for (int y = 0; y < rx.height(); ++y)
         for (int x = 0; x < rx.width(); ++x) {
             if (rx.mask.at(0, x, y) == 0) continue;
             const Vec3 p = at3(rx.world_position, x, y), n = at3(rx.normal, x, y);
-            Tally& t = tally[std::size_t(receiver_class(scene, planes, p, n, x, y))];
+            const int c = receiver_class(scene, planes, p, n, x, y);
+            classes.at(0, x, y) = float(c);
+            Tally& t = tally[std::size_t(c)];
             ++t.receivers;
             const double ep = e.pismo.at(0, x, y) - truth.at(0, x, y), ea = e.averaged.at(0, x, y) - truth.at(0, x, y);
             t.pismo_sq += ep * ep;
@@ -108,8 +193,10 @@ void report(const reference::Scene& scene, int level, int size, double bias_texe
                     ++t.wrong[std::size_t(cause)];
             }
         }
-    std::printf("\n%s, level %d (%zu maps), fitted %d^2, bias %.1f texels%s\n\n", scene.name.c_str(), level,
-                maps.maps.size(), size, bias_texels, normals ? ", with the receiver's own surface" : "");
+    std::printf("\n%s, level %d (%zu maps), fitted %d^2, bias %.1f texels%s, grids %s\n\n", scene.name.c_str(), level,
+                maps.maps.size(), size, bias_texels, normals ? ", with the receiver's own surface" : "",
+                shifted ? "shifted" : "centred");
+    if (lift > 0) std::printf("(a normal offset of %.2f texels instead of the slope term: measured, not the method)\n\n", lift);
     std::printf("| receivers | count | Pismo RMSE | averaged RMSE | share of Pismo's squared error |");
     for (const char* cause : kCauses) std::printf(" %s |", cause);
     std::printf("\n|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -122,6 +209,7 @@ void report(const reference::Scene& scene, int level, int size, double bias_texe
         std::printf("\n");
     }
     std::fflush(stdout);
+    report_sources(scene, maps, rx, truth, classes, po, normals);
 }
 
 }  // namespace
@@ -132,8 +220,13 @@ int main(int argc, char** argv)
     const int size = argc > 2 ? std::atoi(argv[2]) : 384;
     const double bias = argc > 3 ? std::atof(argv[3]) : 2.0;
     const bool normals = argc > 4 && std::atoi(argv[4]) != 0;
+    std::vector<std::string> scenes;
+    std::istringstream names(argc > 5 ? argv[5] : "contact,overlap,fence");
+    for (std::string name; std::getline(names, name, ',');) scenes.push_back(name);
+    const bool shifted = argc <= 6 || std::atoi(argv[6]) != 0;
+    const double lift = argc > 7 ? std::atof(argv[7]) : 0.0;
     std::printf("pismo_error_classes: 64x48 receivers, truth 32^2 strata, Pismo 1024 rays; hard decisions: "
                 "%% of (receiver, map) pairs of the class\n");
-    for (const char* name : {"contact", "overlap", "fence"}) report(reference::builtin_scene(name), level, size, bias, normals);
+    for (const std::string& name : scenes) report(reference::builtin_scene(name), level, size, bias, normals, shifted, lift);
     return 0;
 }

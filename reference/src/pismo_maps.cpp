@@ -98,12 +98,9 @@ void trace_layers(const PreparedScene& casters, const Ray& ray, const LayeredMap
     }
 }
 
-// The camera at `vertex` looking at `fixation` with the narrowest square field
-// of view (times kFovMargin) that holds every point of `held`; a pyramid is
-// convex, so it then holds their convex hull.
-MapCamera camera_holding(const Scene& scene, Vec3 vertex, Vec3 fixation, const std::vector<Vec3>& held)
+// The largest |x| / z and |y| / z of the points of `held` in `frame` at `vertex`.
+double widest_slope(Vec3 vertex, const Basis& frame, const std::vector<Vec3>& held)
 {
-    const Basis frame = basis_looking_along(fixation - vertex, scene.light.up);
     double widest = 0;
     for (const Vec3& p : held) {
         const Vec3 local = frame.to_local(p - vertex);
@@ -113,6 +110,24 @@ MapCamera camera_holding(const Scene& scene, Vec3 vertex, Vec3 fixation, const s
         widest = std::max({widest, std::fabs(local.x) / local.z, std::fabs(local.y) / local.z});
     }
     require(widest > 0, kOperation, "light", "the maps have nothing to hold: no receiver and no caster");
+    return widest;
+}
+
+// The camera at `vertex` looking at `fixation` with the narrowest square field
+// of view (times kFovMargin) that holds every point of `held`; a pyramid is
+// convex, so it then holds their convex hull. With a shift, it then looks at
+// the fixation point moved by the shift's texels (the fixation lands that far
+// the other way) and is fitted again, so it still holds them.
+MapCamera camera_holding(const Scene& scene, Vec3 vertex, Vec3 fixation, const std::vector<Vec3>& held,
+                         SubTexelShift shift)
+{
+    Basis frame = basis_looking_along(fixation - vertex, scene.light.up);
+    double widest = widest_slope(vertex, frame, held);
+    if (shift.size > 0) {
+        const double texel = 2 * kFovMargin * widest / shift.size;  // at unit depth
+        frame = basis_looking_along(frame.n + frame.s * (shift.x * texel) + frame.t * (shift.y * texel), scene.light.up);
+        widest = widest_slope(vertex, frame, held);
+    }
     return MapCamera{to_array(vertex), to_array(frame.s), to_array(frame.t), to_array(frame.n), kFovMargin * widest};
 }
 
@@ -136,23 +151,31 @@ Vec3 pismo_fixation_point(const Scene& scene)
     return scene.light.center + light.n * (0.5 * (scene.light_camera.near + scene.light_camera.far));
 }
 
-MapCamera pismo_vertex_camera(const Scene& scene, Vec3 vertex, Vec3 fixation)
+SubTexelShift pismo_subtexel_shift(int vertex, int size)
+{
+    constexpr double a1 = 0.7548776662466927, a2 = 0.5698402909980532;  // 1/g and 1/g^2, g^3 = g + 1
+    const auto wrap = [](double v) { return v - std::floor(v) - 0.5; };
+    return {wrap(0.5 + vertex * a1), wrap(0.5 + vertex * a2), size};
+}
+
+MapCamera pismo_vertex_camera(const Scene& scene, Vec3 vertex, Vec3 fixation, SubTexelShift shift)
 {
     const LightProjection light(scene);
     const double slab[2] = {nearest_caster_depth(scene, light.basis()), scene.light_camera.far};
     std::vector<Vec3> corners;
     for (double depth : slab)
         for (int corner = 0; corner < 4; ++corner) corners.push_back(light.ray_through(corner & 1, corner >> 1).at(depth));
-    return camera_holding(scene, vertex, fixation, corners);
+    return camera_holding(scene, vertex, fixation, corners, shift);
 }
 
-MapCamera pismo_fitted_camera(const Scene& scene, Vec3 vertex, Vec3 fixation, std::span<const Vec3> region)
+MapCamera pismo_fitted_camera(const Scene& scene, Vec3 vertex, Vec3 fixation, std::span<const Vec3> region,
+                              SubTexelShift shift)
 {
     std::vector<Vec3> held(region.begin(), region.end());
     if (const auto b = casters_bounds(scene))
         for (int corner = 0; corner < 8; ++corner)
             held.push_back({corner & 1 ? b->hi.x : b->lo.x, corner & 2 ? b->hi.y : b->lo.y, corner & 4 ? b->hi.z : b->lo.z});
-    return camera_holding(scene, vertex, fixation, held);
+    return camera_holding(scene, vertex, fixation, held, shift);
 }
 
 std::vector<Vec3> receiver_region(const Receivers& rx)
@@ -209,11 +232,14 @@ PismoMaps render_pismo_maps(const Scene& scene, int level, const LayeredMapOptio
     PismoMaps out{light_mesh(scene.light, level), pismo_fixation_point(scene), {}};
     const PreparedScene casters(pismo_casters(scene));
     out.maps.reserve(out.mesh.vertices.size());
-    for (const Vec3& vertex : out.mesh.vertices)
+    for (std::size_t j = 0; j < out.mesh.vertices.size(); ++j) {
+        const Vec3 vertex = out.mesh.vertices[j];
+        const SubTexelShift shift = options.shift_grids ? pismo_subtexel_shift(int(j), options.size) : SubTexelShift{};
         out.maps.push_back(render_layered_depth_map(
-            casters, region.empty() ? pismo_vertex_camera(scene, vertex, out.fixation)
-                                    : pismo_fitted_camera(scene, vertex, out.fixation, region),
+            casters, region.empty() ? pismo_vertex_camera(scene, vertex, out.fixation, shift)
+                                    : pismo_fitted_camera(scene, vertex, out.fixation, region, shift),
             options));
+    }
     return out;
 }
 

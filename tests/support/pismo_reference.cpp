@@ -6,6 +6,8 @@
 #include <optional>
 #include <cstdint>
 
+#include "penumbra/reference/ground_truth.h"
+
 namespace penumbra::testing {
 namespace {
 
@@ -34,19 +36,22 @@ std::optional<Landing> land(const LayeredDepthMap& map, Vec3 p, double bias_texe
     return Landing{int(x), int(y), depth, bias_texels * texel};
 }
 
-// The receiver: its position, its normal (zero: unknown) and the options.
+// The receiver: its position, its normal (zero: unknown), the options, and
+// the point its maps test (`at`: p, or p lifted by options.lift_texels).
 struct Receiver {
     Vec3 p, n;
     const PismoReferenceOptions& o;
+    Vec3 at;
 
     bool has_normal() const { return dot(n, n) > 0; }
+    bool lifted() const { return at.x != p.x || at.y != p.y || at.z != p.z; }
     // Whether P's own surface faces away from `towards`: a ray there enters P's solid.
     bool faces_away(Vec3 towards) const { return has_normal() && dot(n, towards - p) <= 0; }
     // The bias in texels in `map`: the fixed one, plus the depth P's own
     // surface spans across a texel seen from the map's vertex (tan theta).
     double bias_texels(const LayeredDepthMap& map) const
     {
-        if (!has_normal()) return o.bias_texels;
+        if (!has_normal() || lifted()) return o.bias_texels;
         const double c = dot(normalize(n), normalize(vec(map.camera().position) - p));
         if (c <= 0) return o.bias_texels;
         return o.bias_texels + std::min(std::sqrt(std::max(0.0, 1 - c * c)) / c, o.max_slope);
@@ -55,22 +60,41 @@ struct Receiver {
 
 // Whether a layer of `map` at q's pixel lies nearer than P's depth (minus the
 // bias); P's own solid blocks a map whose vertex its surface faces away from.
+// With options.exact_tests, the ray from the map's vertex through q itself
+// answers (a caster nearer than the same limit), not the ray through the
+// centre of q's pixel.
 bool occludes(const LayeredDepthMap& map, Vec3 q, const Receiver& r)
 {
-    if (r.faces_away(vec(map.camera().position))) return true;
+    const Vec3 vertex = vec(map.camera().position);
+    if (r.faces_away(vertex)) return true;
     const double bias = r.bias_texels(map);
     const std::optional<Landing> at_q = land(map, q, bias);
-    const std::optional<Landing> at_p = land(map, r.p, bias);
+    const std::optional<Landing> at_p = land(map, r.at, bias);
     if (!at_q || !at_p) return false;  // outside the map: no caster was seen there
+    const double limit = at_p->depth - at_p->bias;
+    if (r.o.exact_tests) return r.o.exact_casters->occluded({vertex, normalize(q - vertex)}, 0, limit);
     const auto layers = map.layers(at_q->x, at_q->y);
-    return !layers.empty() && double(layers.front()) < at_p->depth - at_p->bias;
+    return !layers.empty() && double(layers.front()) < limit;
+}
+
+// With options.exact_estimate: the putative occluder of the ray to `light` is
+// the caster crossing nearest P on it (traced from P lifted as the truth
+// lifts it), or P itself when the ray is clear.
+Vec3 exact_occluder(Vec3 light, const Receiver& r)
+{
+    const double lift = reference::kNormalOffset * (1 + max_abs_component(r.at));
+    const Vec3 origin = r.has_normal() ? r.at + normalize(r.n) * lift : r.at;
+    const Vec3 to_light = light - origin;
+    const std::optional<reference::Hit> hit =
+        r.o.exact_casters->closest_hit({origin, normalize(to_light)}, lift, length(to_light));
+    return hit ? origin + normalize(to_light) * hit->t : r.at;
 }
 
 // The first estimate of one map: the depth of the farthest bled layer nearer
 // than p (the occluder nearest p), if any.
 std::optional<double> nearest_occluder_depth(const LayeredDepthMap& bled, const Receiver& r)
 {
-    const std::optional<Landing> at = land(bled, r.p, r.bias_texels(bled));
+    const std::optional<Landing> at = land(bled, r.at, r.bias_texels(bled));
     if (!at) return std::nullopt;
     std::optional<double> nearest;
     for (float layer : bled.layers(at->x, at->y))
@@ -102,12 +126,12 @@ bool hard_shadow_test(const LayeredDepthMap& map, Vec3 p, double bias_texels)
 {
     PismoReferenceOptions o;
     o.bias_texels = bias_texels;
-    return occludes(map, p, Receiver{p, {}, o});
+    return occludes(map, p, Receiver{p, {}, o, p});
 }
 
 bool hard_shadow_test(const LayeredDepthMap& map, Vec3 p, Vec3 normal, const PismoReferenceOptions& options)
 {
-    return occludes(map, p, Receiver{p, normal, options});
+    return occludes(map, p, Receiver{p, normal, options, p});
 }
 
 PismoReferenceMaps PismoReferenceMaps::layered(const reference::PismoMaps& maps)
@@ -127,10 +151,29 @@ PismoReferenceMaps PismoReferenceMaps::maximum_depth(const reference::PismoMaps&
     return out;
 }
 
+// The point P's maps test: P, or with options.lift_texels, where P's surface
+// is grazing from the light (tan theta above kLiftAboveSlope), P lifted
+// along its normal; the slope term stays below that.
+constexpr double kLiftAboveSlope = 2;
+
+Vec3 tested_point(const PismoReferenceMaps& maps, Vec3 p, Vec3 n, const PismoReferenceOptions& o)
+{
+    if (!(o.lift_texels > 0) || !(dot(n, n) > 0)) return p;
+    const LayeredDepthMap& first = maps.test.front();
+    const MapCamera& c = first.camera();
+    const double texel = 2 * c.tan_half_fov * length(p - vec(c.position)) / first.width();
+    Vec3 centre{};
+    for (const Vec3& v : maps.source->mesh.vertices) centre = centre + v * (1.0 / double(maps.source->mesh.vertices.size()));
+    const double cosine = dot(normalize(n), normalize(centre - p));
+    const double sine = std::sqrt(std::max(0.0, 1 - cosine * cosine));
+    if (sine <= kLiftAboveSlope * cosine) return p;  // not grazing: the slope term, as the method
+    return p + normalize(n) * (o.lift_texels * texel * sine);
+}
+
 double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o, Vec3 normal)
 {
     const reference::LightMesh& mesh = maps.source->mesh;
-    const Receiver r{p, normal, o};
+    const Receiver r{p, normal, o, tested_point(maps, p, normal, o)};
     std::vector<std::optional<double>> estimate(mesh.vertices.size());
     for (std::size_t j = 0; j < estimate.size(); ++j) estimate[j] = nearest_occluder_depth(maps.bled[j], r);
     const double total_area = mesh.area();
@@ -155,8 +198,10 @@ double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoRefer
                         distance += w[k] * *d;
                         weight += w[k];
                     }
-                const Vec3 to_p = p - light;
-                const Vec3 occluder = weight > 0 ? light + to_p * (distance / weight / length(to_p)) : p;
+                const Vec3 to_p = r.at - light;
+                const Vec3 occluder = o.exact_estimate ? exact_occluder(light, r)
+                                      : weight > 0     ? light + to_p * (distance / weight / length(to_p))
+                                                       : r.at;
                 // A corner whose vertex P's surface faces away from sees P's own
                 // solid, not what this ray (above P's tangent plane) passes: the
                 // other corners answer, renormalised; none left: the ray is lit.
@@ -176,9 +221,9 @@ double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoRefer
 double averaged_hard_shadows(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o, Vec3 normal)
 {
     const std::vector<double> weights = maps.source->mesh.vertex_weights();
-    const Receiver r{p, normal, o};
+    const Receiver r{p, normal, o, tested_point(maps, p, normal, o)};
     double occlusion = 0;
-    for (std::size_t j = 0; j < weights.size(); ++j) occlusion += weights[j] * occludes(maps.test[j], p, r);
+    for (std::size_t j = 0; j < weights.size(); ++j) occlusion += weights[j] * occludes(maps.test[j], r.at, r);
     return std::clamp(1 - occlusion, 0.0, 1.0);
 }
 

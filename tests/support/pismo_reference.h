@@ -9,6 +9,7 @@
 
 #include "penumbra/layered_depth_map.h"
 #include "penumbra/reference/pismo_maps.h"
+#include "penumbra/reference/tracer.h"
 
 namespace penumbra::testing {
 
@@ -25,6 +26,19 @@ struct PismoReferenceOptions {
     // direction to the map's vertex, the depth P's own surface spans across
     // one texel there.
     double max_slope = 8;
+    // For measurement only (bench/pismo_error_classes): answer a part of the
+    // test by tracing these casters (pismo_casters of the maps' scene) instead
+    // of reading the maps, as maps of unlimited resolution would answer it.
+    // Measured, not the method (docs/pismo.md, "What would remove the rest"):
+    // above 0, a normal offset instead of the slope term: P is tested (and
+    // its rays start) lifted along n by lift_texels texels of map 0 at P's
+    // depth times sin theta, theta between n and the direction to the
+    // light's centre; the bias is bias_texels alone; the own-surface rules
+    // keep P's tangent plane.
+    double lift_texels = 0;
+    const reference::PreparedScene* exact_casters = nullptr;
+    bool exact_estimate = false;  // O_i on the caster crossing nearest P along R_i (none: O_i = P)
+    bool exact_tests = false;     // map k's test along the ray from V_k through the point, not its pixel's centre
 };
 
 // The maps Pismo reads: the layered maps (or their maximum-depth variant) and

@@ -115,4 +115,48 @@ inline OwnSurfaceReceivers own_surface_receivers(const reference::Scene& s)
     return out;
 }
 
+// Thin slats (issue 15's fence, reduced to a closed form): the 2 x 2 light at
+// height 10 of the half-plane scene over slats kSlatWidth wide every
+// kSlatPeriod along x (|x| <= 1.5), 0.02 thick (4.99 <= y <= 5.01), |z| <= 1.
+// At maps of 128^2 fitted to a row of points under them a slat is 1 to 2
+// texels wide, and the maps' common fixation point lies on the slats' plane.
+inline constexpr double kSlatWidth = 0.05, kSlatPeriod = 0.17;
+inline constexpr int kSlats = 17;
+
+inline reference::Scene slats_scene()
+{
+    reference::Scene s = half_plane_scene();
+    s.name = "slats";
+    s.primitives.clear();
+    for (int i = 0; i < kSlats; ++i)
+        s.primitives.push_back(reference::Box{{(i - kSlats / 2) * kSlatPeriod, 5, 0}, {kSlatWidth, 0.02, 2}, {0, 0, 0}});
+    return s;
+}
+
+// The light's visible fraction at (px, py, 0), py < 4.99, |px| <= 1: the ray
+// to light point (lx, 10, .) crosses the slab 4.99 <= y <= 5.01 at x(y) = px +
+// (lx - px)(y - py)/(10 - py), increasing in lx; it meets slat [a, b] when
+// x(4.99) or x(5.01) reaches a and the other or it is at most b: lx between
+// the smaller of the two lx that put a face's crossing at a and the larger of
+// the two that put it at b. The light's x-extent is [-1, 1] (the rays' z stays
+// within |z| <= 1); visibility = 1 - (the union of those intervals in [-1, 1]) / 2.
+inline double slats_visibility(double px, double py)
+{
+    std::vector<std::array<double, 2>> blocked;
+    const auto at = [&](double c, double y) { return px + (c - px) * (10 - py) / (y - py); };
+    for (int i = 0; i < kSlats; ++i) {
+        const double a = (i - kSlats / 2) * kSlatPeriod - kSlatWidth / 2, b = a + kSlatWidth;
+        const double lo = std::max(std::min(at(a, 4.99), at(a, 5.01)), -1.0);
+        const double hi = std::min(std::max(at(b, 4.99), at(b, 5.01)), 1.0);
+        if (lo < hi) blocked.push_back({lo, hi});
+    }
+    std::sort(blocked.begin(), blocked.end());
+    double covered = 0, reach = -1;
+    for (const auto& [lo, hi] : blocked) {
+        covered += std::max(0.0, hi - std::max(lo, reach));
+        reach = std::max(reach, hi);
+    }
+    return 1 - covered / 2;
+}
+
 }  // namespace penumbra::testing

@@ -56,6 +56,24 @@ std::vector<Primitive> pismo_casters(const Scene& scene);
 // point on the light's axis halfway through its camera's depth range.
 Vec3 pismo_fixation_point(const Scene& scene);
 
+// Where a map's pixel grid sits: its camera turned so that the fixation point
+// lands (x, y) texels of a size x size map off the image's centre. The maps
+// all look at one point, so on the surface through it they share one pixel
+// grid: a caster there a texel or two wide is rounded to whole pixels alike
+// in every map, and no number of maps averages that away. Shifting each grid
+// by a different fraction of a texel makes the rounding differ from map to
+// map (docs/pismo.md, "Where fence's error comes from"). size 0: no turn.
+struct SubTexelShift {
+    double x = 0, y = 0;
+    int size = 0;
+};
+
+// The shift of the map at vertex index `vertex`: the R2 sequence (Roberts
+// 2018, the plastic number's inverse powers), ((0.5 + j a1) mod 1 - 0.5,
+// (0.5 + j a2) mod 1 - 0.5), a1 = 0.7548776662, a2 = 0.5698402910: low
+// discrepancy over any run of vertices, in [-1/2, 1/2)^2, none at vertex 0.
+SubTexelShift pismo_subtexel_shift(int vertex, int size);
+
 // The camera of the map at `vertex`: at the vertex, looking at `fixation`,
 // rows "down" against the light's `up`. Its field of view is the narrowest
 // square one (times 1.02) that holds the scene's light frustum from the
@@ -63,7 +81,9 @@ Vec3 pismo_fixation_point(const Scene& scene);
 // slab is the convex hull of its eight corners, so holding the corners holds
 // it all, every receiver the light camera sees and every caster between them
 // and the light. Error(InvalidArgument) when a corner lies behind the vertex.
-MapCamera pismo_vertex_camera(const Scene& scene, Vec3 vertex, Vec3 fixation);
+// With `shift`, turned by it, its field of view fitted again so that it still
+// holds all that.
+MapCamera pismo_vertex_camera(const Scene& scene, Vec3 vertex, Vec3 fixation, SubTexelShift shift = {});
 
 // The same camera fitted to a region instead of the whole frustum: the
 // narrowest square field of view (times 1.02) that holds every point of
@@ -74,7 +94,8 @@ MapCamera pismo_vertex_camera(const Scene& scene, Vec3 vertex, Vec3 fixation);
 // "Cameras fitted to the receivers"). A caster outside the box (an unbounded
 // plane) is seen only where it falls inside. Error(InvalidArgument) when a
 // point lies behind the vertex.
-MapCamera pismo_fitted_camera(const Scene& scene, Vec3 vertex, Vec3 fixation, std::span<const Vec3> region);
+MapCamera pismo_fitted_camera(const Scene& scene, Vec3 vertex, Vec3 fixation, std::span<const Vec3> region,
+                              SubTexelShift shift = {});
 
 // The world positions of the valid receivers (mask): a region to fit to.
 std::vector<Vec3> receiver_region(const Receivers& rx);
@@ -86,6 +107,9 @@ struct LayeredMapOptions {
     // (the two faces of a strand thinner than that, a box's coincident faces)
     // adds no layer. In [0, 0.1].
     double prune = 1e-3;
+    // render_pismo_maps: each map's grid shifted by pismo_subtexel_shift (off:
+    // every grid centred on the fixation point, as before; kept to measure it).
+    bool shift_grids = true;
 };
 
 // The layered depth map of `camera` over the casters (pismo_casters of a
@@ -103,7 +127,8 @@ struct PismoMaps {
 };
 
 // The mesh at `level` and a layered map from each of its vertices: cameras of
-// pismo_vertex_camera, or of pismo_fitted_camera when `region` is not empty.
+// pismo_vertex_camera, or of pismo_fitted_camera when `region` is not empty,
+// each shifted by pismo_subtexel_shift unless options.shift_grids is off.
 PismoMaps render_pismo_maps(const Scene& scene, int level, const LayeredMapOptions& options,
                             std::span<const Vec3> region = {});
 
