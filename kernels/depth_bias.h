@@ -49,19 +49,22 @@ typedef struct {
 } PcfReceiver;
 
 /* The receivers of the strip at (x, y) with the bias each tap will need;
- * `map` is the shadow map's geometry (W, H). */
-PN_FN PcfReceiver pcf_load_receiver(PN_GLOBAL const float* receivers, pn_dims d, pn_dims map, PcfBias b, int x,
-                                    int y, PN_GLOBAL int* bad_rows)
+ * `map` is the shadow map's geometry (W, H). z and its slopes are converted
+ * from convention `c` (kernels/depth_convention.h): the bias, like every tap
+ * the kernels compare, is in normalised linear depth. */
+PN_FN PcfReceiver pcf_load_receiver(PN_GLOBAL const float* receivers, pn_dims d, pn_dims map, PcfBias b,
+                                    DepthConversion c, int x, int y, PN_GLOBAL int* bad_rows)
 {
     PcfReceiver r;
     r.u = pn_clamp(load_checked_plane(receivers, d, 0, x, y, bad_rows), 0.0f, 1.0f);
     r.v = pn_clamp(load_checked_plane(receivers, d, 1, x, y, bad_rows), 0.0f, 1.0f);
-    r.z = load_checked_plane(receivers, d, 2, x, y, bad_rows);
+    r.z = depth_to_normalized(load_checked_plane(receivers, d, 2, x, y, bad_rows), c);
     r.reference = r.z - b.depth_bias;
     const ReceiverSlope s = b.mode == PN_BIAS_CONSTANT ? no_receiver_slope()
                                                        : load_receiver_slope(receivers, d, x, y, bad_rows);
-    r.dzdu = s.dzdu;
-    r.dzdv = s.dzdv;
+    const pn_float slope_factor = depth_slope_factor(r.z, c);
+    r.dzdu = s.dzdu * slope_factor;
+    r.dzdv = s.dzdv * slope_factor;
     r.plane = s.holds;
     if (b.mode == PN_BIAS_SLOPE) {
         const pn_float step = pn_abs(r.dzdu) / (float)map.width + pn_abs(r.dzdv) / (float)map.height;

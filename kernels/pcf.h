@@ -39,7 +39,7 @@ PN_FN pn_float pcf_box_inside(PN_GLOBAL const float* depth, PcfParams p, PcfRece
     pn_float lit = 0.0f;
     for (int dy = -radius; dy <= radius; ++dy)
         for (int dx = -radius; dx <= radius; ++dx) {
-            const pn_float d = pn_gather(depth, origin + (dy * p.depth.pitch + dx));
+            const pn_float d = depth_to_normalized(pn_gather(depth, origin + (dy * p.depth.pitch + dx)), p.convention);
             lit = lit + pcf_box_tap(d, p, r, tx + (float)dx, ty + (float)dy, compare);
         }
     return lit;
@@ -59,7 +59,7 @@ PN_FN pn_float pcf_box_clipped(PN_GLOBAL const float* depth, PcfParams p, PcfRec
         for (int dx = -radius; dx <= radius; ++dx) {
             const pn_float x = tx + (float)dx;
             const pn_mask inside = pn_and(row_inside, pn_and(x >= 0.0f, x < w));
-            const pn_float d = pn_fetch(depth, p.depth, ix + dx, iy + dy);
+            const pn_float d = depth_fetch(depth, p.depth, ix + dx, iy + dy, p.convention);
             const pn_float hit = pcf_box_tap(d, p, r, x, y, compare);
             lit = lit + pn_select(inside, hit, 0.0f);
         }
@@ -71,7 +71,7 @@ PN_FN pn_float pcf_box_clipped(PN_GLOBAL const float* depth, PcfParams p, PcfRec
 PN_FN void pcf_box(PN_GLOBAL const float* depth, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
                    PN_GLOBAL int* bad_rows, PcfParams p, int x, int y, int compare)
 {
-    const PcfReceiver r = pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, x, y, bad_rows);
+    const PcfReceiver r = pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, p.convention, x, y, bad_rows);
     const pn_float tx = pcf_texel(r.u, p.depth.width), ty = pcf_texel(r.v, p.depth.height);
     const float radius = (float)p.radius, w = (float)p.depth.width, h = (float)p.depth.height;
     const pn_float x0 = pn_max(tx - radius, 0.0f), x1 = pn_min(tx + radius + 1.0f, w);
