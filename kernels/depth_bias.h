@@ -45,6 +45,7 @@ typedef struct {
     pn_float z;             /* light depth */
     pn_float dzdu, dzdv;    /* receiver-plane mode: the plane's slopes, else 0 */
     pn_float reference;     /* z - beta for a tap-independent beta (constant, slope, fallback) */
+    pn_float threshold;     /* the reference in the map's convention (depth_threshold) */
     pn_mask plane;          /* receiver-plane mode: the derivatives hold here */
 } PcfReceiver;
 
@@ -71,6 +72,7 @@ PN_FN PcfReceiver pcf_load_receiver(PN_GLOBAL const float* receivers, pn_dims d,
         const pn_float beta = pn_clamp(b.depth_bias + b.slope_scale * step, b.low, b.high);
         r.reference = pn_select(r.plane, r.z - beta, r.reference);
     }
+    r.threshold = depth_threshold(r.reference, c);
     return r;
 }
 
@@ -89,6 +91,18 @@ PN_FN pn_float pcf_tap_reference(PcfReceiver r, PcfBias b, pn_dims map, pn_float
 PN_FN pn_float pcf_lit(pn_float depth, pn_float reference)
 {
     return pn_select(depth >= reference, 1.0f, 0.0f);
+}
+
+/* pcf_lit for a tap of the map's stored depth at texel (tx, ty): the
+ * reference moved into the map's convention once per receiver
+ * (depth_threshold), or per tap where the receiver's plane moves it; the
+ * taps themselves are never converted (measured: docs/integration.md,
+ * "Depth conventions"). */
+PN_FN pn_float pcf_tap_lit(pn_float stored, PcfReceiver r, PcfBias b, DepthConversion c, pn_dims map, pn_float tx,
+                           pn_float ty)
+{
+    if (b.mode != PN_BIAS_RECEIVER_PLANE) return depth_lit(stored, r.threshold, c);
+    return depth_lit(stored, depth_threshold(pcf_tap_reference(r, b, map, tx, ty), c), c);
 }
 
 #endif

@@ -70,6 +70,37 @@ PN_FN pn_float depth_slope_factor(pn_float l, DepthConversion c)
     return c.kind == PN_DEPTH_PERSPECTIVE ? factor : -factor;
 }
 
+/* The stored value of normalised depth l, clamped into [0, 1] (the inverse
+ * of depth_to_normalized): linear near + l (far - near); perspective
+ * l (1 + k) / (1 + k l); reversed (1 - l) / (1 + k l). */
+PN_FN pn_float depth_from_normalized(pn_float l, DepthConversion c)
+{
+    if (c.kind == PN_DEPTH_NORMALIZED) return l;
+    const pn_float t = pn_clamp(l, 0.0f, 1.0f);
+    if (c.kind == PN_DEPTH_LINEAR) return c.low + t * (c.high - c.low);
+    const pn_float grow = 1.0f + c.scale * t;
+    return c.kind == PN_DEPTH_PERSPECTIVE ? t * (1.0f + c.scale) / grow : (1.0f - t) / grow;
+}
+
+/* A comparison "normalised depth >= reference" moved into the stored
+ * convention once per receiver, so that the taps are compared as stored
+ * (every conversion is monotonic: increasing, or decreasing for reversed
+ * Z, where the comparison turns): depth_lit(stored, depth_threshold(ref)).
+ * A reference below 0 is met by every stored depth, one beyond 1 by none. */
+PN_FN pn_float depth_threshold(pn_float reference, DepthConversion c)
+{
+    if (c.kind == PN_DEPTH_NORMALIZED) return reference;
+    const float beyond = c.kind == PN_DEPTH_REVERSED ? -3.0e38f : 3.0e38f;
+    return pn_select(reference <= 1.0f, depth_from_normalized(reference, c), beyond);
+}
+
+/* 1 where a stored depth meets a threshold of depth_threshold, else 0. */
+PN_FN pn_float depth_lit(pn_float stored, pn_float threshold, DepthConversion c)
+{
+    const pn_mask lit = c.kind == PN_DEPTH_REVERSED ? stored <= threshold : stored >= threshold;
+    return pn_select(lit, 1.0f, 0.0f);
+}
+
 /* A shadow map's texel (x, y), clamped to the map, as normalised depth. */
 PN_FN pn_float depth_fetch(PN_GLOBAL const float* depth, pn_dims map, pn_int x, pn_int y, DepthConversion c)
 {

@@ -197,7 +197,7 @@ PN_KERNEL void msm_soft_##variant(PN_LOOKUP_ARGS(T, MomentParams))              
 {                                                                                                                   \
     PN_LOOKUP_BEGIN(raw);                                                                                           \
     const pn_double z_f = pn_to_double(raw.z) - (double)p.depth_bias;                                               \
-    const ReceiverSlope slope = msm_soft_load_slope(receivers, p, raw, pn_x, pn_y, bad_rows);                           \
+    const ReceiverSlope slope = msm_soft_load_slope(receivers, p, raw, pn_x, pn_y, bad_rows);                      \
     const Receiver r = msm_soft_receiver(raw, p);                                                                   \
     pn_mask lit;                                                                                                    \
     FractionalWindow window = vssm_search_window(msm_soft_geometry(p), r);                                          \

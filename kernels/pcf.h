@@ -27,7 +27,7 @@ PN_FN pn_float pcf_texel(pn_float t, int size)
  * benchmark's gather limit: the same fetches with no comparison). */
 PN_FN pn_float pcf_box_tap(pn_float d, PcfParams p, PcfReceiver r, pn_float x, pn_float y, int compare)
 {
-    return compare ? pcf_lit(d, pcf_tap_reference(r, p.bias, p.depth, x, y)) : d;
+    return compare ? pcf_tap_lit(d, r, p.bias, p.convention, p.depth, x, y) : d;
 }
 
 /* Lit taps of windows that lie inside the map. */
@@ -39,7 +39,7 @@ PN_FN pn_float pcf_box_inside(PN_GLOBAL const float* depth, PcfParams p, PcfRece
     pn_float lit = 0.0f;
     for (int dy = -radius; dy <= radius; ++dy)
         for (int dx = -radius; dx <= radius; ++dx) {
-            const pn_float d = depth_to_normalized(pn_gather(depth, origin + (dy * p.depth.pitch + dx)), p.convention);
+            const pn_float d = pn_gather(depth, origin + (dy * p.depth.pitch + dx));
             lit = lit + pcf_box_tap(d, p, r, tx + (float)dx, ty + (float)dy, compare);
         }
     return lit;
@@ -59,7 +59,7 @@ PN_FN pn_float pcf_box_clipped(PN_GLOBAL const float* depth, PcfParams p, PcfRec
         for (int dx = -radius; dx <= radius; ++dx) {
             const pn_float x = tx + (float)dx;
             const pn_mask inside = pn_and(row_inside, pn_and(x >= 0.0f, x < w));
-            const pn_float d = depth_fetch(depth, p.depth, ix + dx, iy + dy, p.convention);
+            const pn_float d = pn_fetch(depth, p.depth, ix + dx, iy + dy);
             const pn_float hit = pcf_box_tap(d, p, r, x, y, compare);
             lit = lit + pn_select(inside, hit, 0.0f);
         }

@@ -114,8 +114,8 @@ void vsm(Context& context, const Image& depth, const Image& receivers, const Vsm
     ChebyshevParams p = base_params(receivers, out, options.min_variance, options.bleed);
     p.radius = options.radius;
     p.convention = detail::kernel_conversion(options.depth_convention);
-    detail::checked_direct_lookup<KernelId::vsm_direct>(context.impl(), op, depth, receivers, options.depth_convention, p,
-                                                   out);
+    detail::checked_direct_lookup<KernelId::vsm_direct>(context.impl(), op, depth, receivers,
+                                                 options.depth_convention, p, out);
 }
 
 void vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options, Image& out)

@@ -210,8 +210,10 @@ MsmTable build_msm_table(Context& context, const Image& depth, Quantization quan
     check_depth_map(op, depth);
     check_storage(op, quantization, precision);
     check_depth_convention(convention, op);
-    if (quantization != Quantization::Bits16)
-        return {moment_table_as(context, op, depth, 4, precision, TableValues{0, 0.0f, 0.0f, convention}), quantization};
+    if (quantization != Quantization::Bits16) {
+        const TableValues powers{PN_TABLE_POWERS, 0.0f, 0.0f, convention};
+        return {moment_table_as(context, op, depth, 4, precision, powers), quantization};
+    }
     EncodedSatParams p{};
     p.channels = 4;
     p.encoding = PN_ENCODE_MSM;
@@ -278,8 +280,8 @@ void msm(Context& context, const Image& depth, const Image& receivers, const Msm
     set_msm_biases(p, op, Quantization::None, options.moment_bias, options.depth_bias);
     p.radius = options.radius;
     p.convention = detail::kernel_conversion(options.depth_convention);
-    detail::checked_direct_lookup<KernelId::msm_direct>(context.impl(), op, depth, receivers, options.depth_convention, p,
-                                                   out);
+    detail::checked_direct_lookup<KernelId::msm_direct>(context.impl(), op, depth, receivers,
+                                                 options.depth_convention, p, out);
 }
 
 namespace {
@@ -384,8 +386,8 @@ void evsm(Context& context, const Image& depth, const EvsmWarp& warp, const Imag
     const float negative = warp.negative.value_or(default_evsm_exponent(Quantization::None, false));
     set_evsm_options(p, op, options, warp.channels, positive, negative, Quantization::None);
     p.convention = detail::kernel_conversion(options.depth_convention);
-    detail::checked_direct_lookup<KernelId::evsm_direct>(context.impl(), op, depth, receivers, options.depth_convention, p,
-                                                   out);
+    detail::checked_direct_lookup<KernelId::evsm_direct>(context.impl(), op, depth, receivers,
+                                                 options.depth_convention, p, out);
 }
 
 }  // namespace penumbra

@@ -153,7 +153,8 @@ TEST_F(DepthConventionCli, BadConventionsAndChannelsAreOneLineAndExitTwo)
                           {"evsm4 --depth-convention zbuffer", "option --depth-convention"},
                           {"vssm --depth-convention linear --near 0.5 --far 10", "channel Z at pixel"},
                           {"pcf --depth-convention linear --near 0.5 --far 50 --depth-channel Q", "Q"},
-                          {"pcf-gauss --depth-convention linear --near 0.5 --far 50 --depth-channel", "--depth-channel"},
+                          {"pcf-gauss --depth-convention linear --near 0.5 --far 50 --depth-channel",
+                           "--depth-channel"},
                           {"burley --depth-convention perspective --near 0.5 --far 50", "outside [0, 1]"},
                       });
     expect_bad_input("shade --method dsm --deep-map " + path("sm.exr") + " --receivers " + path("rx.exr") +
