@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "penumbra/device_image.h"
 #include "penumbra/error.h"
 #include "penumbra/methods.h"
 #include "support/backends.h"
@@ -295,6 +296,27 @@ TEST(DepthConventionErrors, ATableLookupTakesReceiversInTheTablesConvention)
     VsmOptions same;
     same.depth_convention = linear;
     EXPECT_NO_THROW(vsm(ctx, table, rx, same));
+}
+
+// The device-resident chain reads normalised depth only, and says so
+// (docs/integration.md, "Depth conventions").
+PN_BACKEND_TEST(DepthConventions, TheDeviceChainRefusesAnotherConvention)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    const DeviceImage map = upload(ctx, testing::random_depth(5, 4, 1));
+    const DeviceImage rx = upload(ctx, testing::receivers_on_texels(5, 4, 5, 4, 0.1f, 0.9f, 2));
+    DeviceMomentTable table = device_moment_table(ctx, 5, 4);
+    build_moment_table(ctx, map, table);
+    DeviceImage out = device_image(ctx, 5, 4, 1);
+    VsmOptions vsm_options;
+    vsm_options.depth_convention = convention_of(DepthConventionKind::Perspective);
+    expect_error([&] { vsm(ctx, table, rx, vsm_options, out); }, ErrorCategory::InvalidArgument, "depth-convention",
+                 "normalized depth only");
+    VssmOptions vssm_options;
+    vssm_options.depth_convention = convention_of(DepthConventionKind::Linear);
+    expect_error([&] { vssm(ctx, table, rx, vssm_options, out); }, ErrorCategory::InvalidArgument,
+                 "depth-convention", "normalized depth only");
+    finish(ctx);
 }
 
 }  // namespace
