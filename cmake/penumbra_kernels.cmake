@@ -8,6 +8,7 @@
 set(PENUMBRA_KERNEL_FILES
   kernels/params.h
   kernels/dialect.h
+  kernels/depth_convention.h
   kernels/moment_table.h
   kernels/chebyshev.h
   kernels/box_window.h
@@ -58,15 +59,17 @@ file(CONFIGURE OUTPUT ${_gen}/penumbra_kernel_includes.h CONTENT "${_includes}")
 # the files whose helpers those call; a helper file's own kernels stay out of
 # the program (cmake/embed_kernels.cmake). The embed step stops the build when
 # a table entry of the family is defined by none of its files.
-set(PENUMBRA_CL_FAMILY_FILES_moment_table kernels/moment_table.h)
-set(PENUMBRA_CL_FAMILY_FILES_chebyshev kernels/moment_table.h kernels/chebyshev.h kernels/box_window.h kernels/vsm.h
-    kernels/vssm.h)
+set(PENUMBRA_CL_FAMILY_FILES_moment_table kernels/depth_convention.h kernels/moment_table.h)
+set(PENUMBRA_CL_FAMILY_FILES_chebyshev kernels/depth_convention.h kernels/moment_table.h kernels/chebyshev.h
+    kernels/box_window.h kernels/vsm.h kernels/vssm.h)
 set(PENUMBRA_CL_FAMILY_FILES_bilateral kernels/bilateral.h)
 set(PENUMBRA_CL_FAMILY_FILES_sdf kernels/sdf.h)
 set(PENUMBRA_CL_FAMILY_FILES_moments
-  kernels/moment_table.h kernels/chebyshev.h kernels/box_window.h kernels/vsm.h kernels/vssm.h kernels/moment_quantize.h
+  kernels/depth_convention.h kernels/moment_table.h kernels/chebyshev.h kernels/box_window.h kernels/vsm.h kernels/vssm.h
+  kernels/moment_quantize.h
   kernels/exponential_warp.h kernels/encoded_table.h kernels/evsm.h kernels/msm.h kernels/receiver_slope.h kernels/msm_soft.h)
-set(PENUMBRA_CL_FAMILY_FILES_pcf kernels/receiver_slope.h kernels/depth_bias.h kernels/pcf.h kernels/pcf_gauss.h kernels/pcf_disc.h
+set(PENUMBRA_CL_FAMILY_FILES_pcf kernels/depth_convention.h kernels/receiver_slope.h kernels/depth_bias.h kernels/pcf.h
+    kernels/pcf_gauss.h kernels/pcf_disc.h
     kernels/hammersley.h kernels/pcss.h kernels/burley.h kernels/cascades.h)
 set(PENUMBRA_CL_FAMILY_FILES_ambient kernels/ambient_volumes.h kernels/ambient_sh.h)
 set(PENUMBRA_CL_FAMILY_FILES_dsm kernels/receiver_slope.h kernels/dsm_lookup.h)

@@ -58,8 +58,8 @@ PN_FN TexelWindow texel_window(pn_dims t, pn_float u, pn_float v, int radius)
  * windows all lie inside the map reads its taps at uniform offsets from each
  * lane's window origin; a strip touching an edge masks the taps beyond the
  * clipped window (as kernels/pcf.h's box). */
-PN_FN void direct_box_sums(PN_GLOBAL const float* depth, pn_dims d, TexelWindow w, int radius, int encoding,
-                           float c_positive, float c_negative, int moments, pn_double* sum)
+PN_FN void direct_box_sums(PN_GLOBAL const float* depth, pn_dims d, DepthConversion c, TexelWindow w, int radius,
+                           int encoding, float c_positive, float c_negative, int moments, pn_double* sum)
 {
     for (int k = 0; k < moments; ++k) sum[k] = 0.0;
     const int side = 2 * radius + 1;
@@ -70,8 +70,8 @@ PN_FN void direct_box_sums(PN_GLOBAL const float* depth, pn_dims d, TexelWindow 
         const pn_int origin = w.y0 * d.pitch + w.x0;
         for (int dy = 0; dy < side; ++dy)
             for (int dx = 0; dx < side; ++dx) {
-                texel_values(pn_gather(depth, origin + (dy * d.pitch + dx)), encoding, c_positive, c_negative,
-                             moments, v);
+                texel_values(depth_to_normalized(pn_gather(depth, origin + (dy * d.pitch + dx)), c), encoding,
+                             c_positive, c_negative, moments, v);
                 for (int k = 0; k < moments; ++k) sum[k] = sum[k] + v[k];
             }
         return;
@@ -80,20 +80,21 @@ PN_FN void direct_box_sums(PN_GLOBAL const float* depth, pn_dims d, TexelWindow 
     for (int dy = 0; dy < side; ++dy)
         for (int dx = 0; dx < side; ++dx) {
             const pn_dmask inside = pn_mask_to_dmask(pn_and(columns > (float)dx, rows > (float)dy));
-            texel_values(pn_fetch(depth, d, w.x0 + dx, w.y0 + dy), encoding, c_positive, c_negative, moments, v);
+            texel_values(depth_fetch(depth, d, w.x0 + dx, w.y0 + dy, c), encoding, c_positive, c_negative, moments, v);
             for (int k = 0; k < moments; ++k) sum[k] = sum[k] + pn_dselect(inside, v[k], 0.0);
         }
 }
 
 /* The window's means of the values: the direct counterpart of a table's
- * box query (`depth`: the map, one plane of dims `d`). One reciprocal of the
+ * box query (`depth`: the map, one plane of dims `d`, stored in convention
+ * `c`, converted per tap: kernels/depth_convention.h). One reciprocal of the
  * area, not a division per value: double divisions are much of MSM's and
  * EVSM's time; it moves a mean by at most one rounding (2^-53 relative). */
-PN_FN void direct_box_means(PN_GLOBAL const float* depth, pn_dims d, TexelWindow w, int radius, int encoding,
-                            float c_positive, float c_negative, int moments, pn_double* mean)
+PN_FN void direct_box_means(PN_GLOBAL const float* depth, pn_dims d, DepthConversion c, TexelWindow w, int radius,
+                            int encoding, float c_positive, float c_negative, int moments, pn_double* mean)
 {
     pn_double sum[4];
-    direct_box_sums(depth, d, w, radius, encoding, c_positive, c_negative, moments, sum);
+    direct_box_sums(depth, d, c, w, radius, encoding, c_positive, c_negative, moments, sum);
     const pn_double inverse_area = 1.0 / pn_int_to_double((w.x1 - w.x0) * (w.y1 - w.y0));
     for (int k = 0; k < moments; ++k) mean[k] = sum[k] * inverse_area;
 }

@@ -46,8 +46,8 @@ PN_FN pn_float burley_cone_slope(const SoftPcfParams p, PcfReceiver r)
 PN_FN pn_float burley_blocker_depth(PN_GLOBAL const float* depth, const SoftPcfParams p, PcfReceiver r,
                                     pn_float cone_slope, pn_mask* found)
 {
-    return hammersley_blocker_depth(depth, p.depth, p.bias, r, p.max_radius, p.blocker_samples, 0, cone_slope,
-                                    0.9f, found);
+    return hammersley_blocker_depth(depth, p.depth, p.convention, p.bias, r, p.max_radius, p.blocker_samples, 0,
+                                    cone_slope, 0.9f, found);
 }
 
 /* Section 3.3: the shadow fades as its occluder gets farther. */
@@ -61,7 +61,8 @@ PN_KERNEL void burley(PN_GLOBAL const float* depth, PN_GLOBAL const float* recei
                       PN_GLOBAL int* bad_rows, const SoftPcfParams p, PN_PIXEL_ARGS)
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const PcfReceiver r = pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, pn_x, pn_y, bad_rows);
+    const PcfReceiver r =
+        pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, p.convention, pn_x, pn_y, bad_rows);
     const pn_float cone_slope = burley_cone_slope(p, r);
     pn_mask found;
     const pn_float z_blocker = burley_blocker_depth(depth, p, r, cone_slope, &found);
@@ -70,7 +71,8 @@ PN_KERNEL void burley(PN_GLOBAL const float* depth, PN_GLOBAL const float* recei
     const pn_float radius =
         p.min_radius + (p.max_radius - p.min_radius) * (1.0f - z_blocker / pn_max(r.z, 1e-30f));
     const pn_float occlusion =
-        1.0f - hammersley_disc_visibility(depth, p.depth, p.bias, r, radius, p.filter_samples, cone_slope);
+        1.0f -
+        hammersley_disc_visibility(depth, p.depth, p.convention, p.bias, r, radius, p.filter_samples, cone_slope);
     const pn_float visibility = 1.0f - occlusion * burley_opacity(p, r.z, z_blocker);
     pn_store(out, p.out, pn_x, pn_y, pn_select(found, visibility, 1.0f));
 }

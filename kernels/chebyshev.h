@@ -37,8 +37,9 @@ PN_FN Receiver load_receiver(PN_GLOBAL const float* receivers, pn_dims d, int x,
 }
 
 /* load_receiver that also flags the row when u, v or z is NaN or infinite
- * (before clamping, which would hide a NaN differently on each backend). */
-PN_FN Receiver load_checked_receiver(PN_GLOBAL const float* receivers, pn_dims d, int x, int y,
+ * (before clamping, which would hide a NaN differently on each backend), and
+ * converts z from its convention `c` (kernels/depth_convention.h). */
+PN_FN Receiver load_checked_receiver(PN_GLOBAL const float* receivers, pn_dims d, DepthConversion c, int x, int y,
                                      PN_GLOBAL int* bad_rows)
 {
     const pn_float u = pn_load(PN_PLANE(receivers, d, 0), d, x, y);
@@ -48,7 +49,7 @@ PN_FN Receiver load_checked_receiver(PN_GLOBAL const float* receivers, pn_dims d
     Receiver r;
     r.u = pn_clamp(u, 0.0f, 1.0f);
     r.v = pn_clamp(v, 0.0f, 1.0f);
-    r.z = z;
+    r.z = depth_to_normalized(z, c);
     return r;
 }
 
@@ -68,7 +69,7 @@ PN_FN Receiver load_checked_receiver(PN_GLOBAL const float* receivers, pn_dims d
         const Params p, PN_PIXEL_ARGS
 #define PN_LOOKUP_BEGIN(r)                    \
     PN_PIXEL_BEGIN(p.out.width, p.out.height); \
-    const Receiver r = load_checked_receiver(receivers, p.receivers, pn_x, pn_y, bad_rows)
+    const Receiver r = load_checked_receiver(receivers, p.receivers, p.convention, pn_x, pn_y, bad_rows)
 #define PN_LOOKUP_STORE(visibility) pn_store(out, p.out, pn_x, pn_y, visibility)
 
 PN_FN pn_double chebyshev_upper_bound(DepthMoments m, pn_double z, double min_variance)

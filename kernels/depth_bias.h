@@ -45,29 +45,34 @@ typedef struct {
     pn_float z;             /* light depth */
     pn_float dzdu, dzdv;    /* receiver-plane mode: the plane's slopes, else 0 */
     pn_float reference;     /* z - beta for a tap-independent beta (constant, slope, fallback) */
+    pn_float threshold;     /* the reference in the map's convention (depth_threshold) */
     pn_mask plane;          /* receiver-plane mode: the derivatives hold here */
 } PcfReceiver;
 
 /* The receivers of the strip at (x, y) with the bias each tap will need;
- * `map` is the shadow map's geometry (W, H). */
-PN_FN PcfReceiver pcf_load_receiver(PN_GLOBAL const float* receivers, pn_dims d, pn_dims map, PcfBias b, int x,
-                                    int y, PN_GLOBAL int* bad_rows)
+ * `map` is the shadow map's geometry (W, H). z and its slopes are converted
+ * from convention `c` (kernels/depth_convention.h): the bias, like every tap
+ * the kernels compare, is in normalised linear depth. */
+PN_FN PcfReceiver pcf_load_receiver(PN_GLOBAL const float* receivers, pn_dims d, pn_dims map, PcfBias b,
+                                    DepthConversion c, int x, int y, PN_GLOBAL int* bad_rows)
 {
     PcfReceiver r;
     r.u = pn_clamp(load_checked_plane(receivers, d, 0, x, y, bad_rows), 0.0f, 1.0f);
     r.v = pn_clamp(load_checked_plane(receivers, d, 1, x, y, bad_rows), 0.0f, 1.0f);
-    r.z = load_checked_plane(receivers, d, 2, x, y, bad_rows);
+    r.z = depth_to_normalized(load_checked_plane(receivers, d, 2, x, y, bad_rows), c);
     r.reference = r.z - b.depth_bias;
     const ReceiverSlope s = b.mode == PN_BIAS_CONSTANT ? no_receiver_slope()
                                                        : load_receiver_slope(receivers, d, x, y, bad_rows);
-    r.dzdu = s.dzdu;
-    r.dzdv = s.dzdv;
+    const pn_float slope_factor = depth_slope_factor(r.z, c);
+    r.dzdu = s.dzdu * slope_factor;
+    r.dzdv = s.dzdv * slope_factor;
     r.plane = s.holds;
     if (b.mode == PN_BIAS_SLOPE) {
         const pn_float step = pn_abs(r.dzdu) / (float)map.width + pn_abs(r.dzdv) / (float)map.height;
         const pn_float beta = pn_clamp(b.depth_bias + b.slope_scale * step, b.low, b.high);
         r.reference = pn_select(r.plane, r.z - beta, r.reference);
     }
+    r.threshold = depth_threshold(r.reference, c);
     return r;
 }
 
@@ -86,6 +91,18 @@ PN_FN pn_float pcf_tap_reference(PcfReceiver r, PcfBias b, pn_dims map, pn_float
 PN_FN pn_float pcf_lit(pn_float depth, pn_float reference)
 {
     return pn_select(depth >= reference, 1.0f, 0.0f);
+}
+
+/* pcf_lit for a tap of the map's stored depth at texel (tx, ty): the
+ * reference moved into the map's convention once per receiver
+ * (depth_threshold), or per tap where the receiver's plane moves it; the
+ * taps themselves are never converted (measured: docs/integration.md,
+ * "Depth conventions"). */
+PN_FN pn_float pcf_tap_lit(pn_float stored, PcfReceiver r, PcfBias b, DepthConversion c, pn_dims map, pn_float tx,
+                           pn_float ty)
+{
+    if (b.mode != PN_BIAS_RECEIVER_PLANE) return depth_lit(stored, r.threshold, c);
+    return depth_lit(stored, depth_threshold(pcf_tap_reference(r, b, map, tx, ty), c), c);
 }
 
 #endif

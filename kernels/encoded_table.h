@@ -55,9 +55,9 @@ PN_FN void encoded_band_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T* tab
         PN_FOR_STRIPS(x, 0, p.depth.width)                                                                         \
         {                                                                                                          \
             const pn_float z = pn_load(depth, p.depth, x, y);                                                      \
-            bad = pn_or(bad, sat_depth_outside(z));                                                                \
+            bad = pn_or(bad, depth_outside(z, p.convention));                                                      \
             pn_float v[4];                                                                                         \
-            encode_texel(pn_clamp(z, 0.0f, 1.0f), p, v);                                                           \
+            encode_texel(pn_clamp(depth_to_normalized(z, p.convention), 0.0f, 1.0f), p, v);                        \
             for (int k = 0; k < p.channels; ++k) {                                                                 \
                 PN_GLOBAL T* column = PN_PLANE(columns, p.columns, k);                                             \
                 const pn_sum_##variant row_prefix =                                                                \

@@ -148,14 +148,14 @@ typedef struct {
 
 /* Tap t of the disc of `radius` (texture units) around receiver r: the tap
  * sits at (u W + dx radius W, v H + dy radius H) texels. */
-PN_FN DiscSample hammersley_sample(PN_GLOBAL const float* depth, pn_dims map, PcfBias b, PcfReceiver r,
-                                   pn_float radius, DiscTap t)
+PN_FN DiscSample hammersley_sample(PN_GLOBAL const float* depth, pn_dims map, DepthConversion c, PcfBias b,
+                                   PcfReceiver r, pn_float radius, DiscTap t)
 {
     const float w = (float)map.width, h = (float)map.height;
     const pn_float tx = hammersley_texel(r.u * w + t.dx * radius * w, map.width);
     const pn_float ty = hammersley_texel(r.v * h + t.dy * radius * h, map.height);
     DiscSample s;
-    s.depth = pn_fetch(depth, map, pn_to_int(tx), pn_to_int(ty));
+    s.depth = depth_fetch(depth, map, pn_to_int(tx), pn_to_int(ty), c);
     s.reference = pcf_tap_reference(r, b, map, tx, ty);
     return s;
 }
@@ -164,14 +164,14 @@ PN_FN DiscSample hammersley_sample(PN_GLOBAL const float* depth, pn_dims map, Pc
  * of `radius` (texture units): the fraction of n taps lit, a tap at distance
  * rho (texture units) from the centre lowered by the cone slope * rho
  * (slope 0: the family's bias alone; Burley's bias cone otherwise). */
-PN_FN pn_float hammersley_disc_visibility(PN_GLOBAL const float* depth, pn_dims map, PcfBias b, PcfReceiver r,
-                                          pn_float radius, int n, pn_float slope)
+PN_FN pn_float hammersley_disc_visibility(PN_GLOBAL const float* depth, pn_dims map, DepthConversion c, PcfBias b,
+                                          PcfReceiver r, pn_float radius, int n, pn_float slope)
 {
     pn_float lit = 0.0f;
     DiscWalk walk = hammersley_walk(n, 1);
     for (int k = 0; k < n; ++k) {
         const DiscTap t = hammersley_walk_next(&walk);
-        const DiscSample s = hammersley_sample(depth, map, b, r, radius, t);
+        const DiscSample s = hammersley_sample(depth, map, c, b, r, radius, t);
         lit = lit + pcf_lit(s.depth, s.reference - slope * t.radius * radius);
     }
     return lit / (float)n;
@@ -183,7 +183,8 @@ PN_FN pn_float hammersley_disc_visibility(PN_GLOBAL const float* depth, pn_dims 
  * weighs 1 - weight_falloff * t.radius (pcss: 0, every tap 1; burley: 0.9,
  * Burley's 1 - 0.9 r / R). Returns the weighted mean depth of the blocking
  * taps; `found` marks the lanes with one (weights stay >= 0.1 > 0). */
-PN_FN pn_float hammersley_blocker_depth(PN_GLOBAL const float* depth, pn_dims map, PcfBias b, PcfReceiver r,
+PN_FN pn_float hammersley_blocker_depth(PN_GLOBAL const float* depth, pn_dims map, DepthConversion c, PcfBias b,
+                                        PcfReceiver r,
                                         pn_float radius, int n, int uniform_density, pn_float cone_slope,
                                         float weight_falloff, pn_mask* found)
 {
@@ -191,7 +192,7 @@ PN_FN pn_float hammersley_blocker_depth(PN_GLOBAL const float* depth, pn_dims ma
     DiscWalk walk = hammersley_walk(n, uniform_density);
     for (int k = 0; k < n; ++k) {
         const DiscTap t = hammersley_walk_next(&walk);
-        const DiscSample s = hammersley_sample(depth, map, b, r, radius, t);
+        const DiscSample s = hammersley_sample(depth, map, c, b, r, radius, t);
         const pn_mask blocks = s.depth < s.reference - cone_slope * t.radius * radius;
         const float weight = 1.0f - weight_falloff * t.radius;
         weighted = weighted + pn_select(blocks, weight * s.depth, 0.0f);

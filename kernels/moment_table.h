@@ -1,6 +1,7 @@
 /* Summed-area tables of depth moments: build and box queries.
  *
- * Computes, for a depth map z(i, j) in [0, 1], the inclusive sums
+ * Computes, for a depth map z(i, j) in [0, 1] (converted where it is loaded
+ * from the map's convention, kernels/depth_convention.h), the inclusive sums
  *     S_k(x, y) = sum_{i <= x, j <= y} m_k(i, j),  m_k = z^k, k = 1 .. moments
  * (Crow 1984; as used for variance shadow maps by Lauritzen, GPU Gems 3 ch. 8),
  * so that the sum of m_k over any rectangle costs four reads.
@@ -57,7 +58,7 @@ PN_FN pn_mask sat_depth_outside(pn_float z)
  * x0 and x1 - x0 are multiples of every lane count (64), or x1 is the width.
  * `carry` holds, per moment and row, the row's sum left of x0 (updated to x1);
  * row `column_row` of `columns` holds the column sums above y0 (updated to y1).
- * A depth outside [0, 1] (NaN and infinities included) sets bad_rows[y]. */
+ * A depth outside its convention's range (NaN and infinities included) sets bad_rows[y]. */
 PN_FN void sat_rows_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
                           PN_GLOBAL float* carry, PN_GLOBAL float* columns, int column_row,
                           PN_GLOBAL int* bad_rows, const SatParams p, int moments, int x0, int x1, int y0, int y1)
@@ -68,8 +69,9 @@ PN_FN void sat_rows_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
         pn_mask bad = sat_depth_outside(0.0f);
         PN_FOR_STRIPS(x, x0, x1)
         {
-            const pn_float z = pn_load(depth, p.depth, x, y);
-            bad = pn_or(bad, sat_depth_outside(z));
+            const pn_float stored = pn_load(depth, p.depth, x, y);
+            bad = pn_or(bad, depth_outside(stored, p.convention));
+            const pn_float z = depth_to_normalized(stored, p.convention);
             pn_float m = z;
             for (int k = 0; k < moments; ++k) {
                 PN_GLOBAL float* column = PN_PLANE(columns, p.columns, k);
@@ -174,8 +176,9 @@ PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
         pn_mask bad = sat_depth_outside(0.0f);
         PN_FOR_STRIPS(x, x0, x1)
         {
-            const pn_float z = pn_load(depth, p.depth, x, y);
-            bad = pn_or(bad, sat_depth_outside(z));
+            const pn_float stored = pn_load(depth, p.depth, x, y);
+            bad = pn_or(bad, depth_outside(stored, p.convention));
+            const pn_float z = depth_to_normalized(stored, p.convention);
             pn_double v[4];
             sat_texel_values(z, p, moments, v);
             pn_uint q[PN_MAX_PLANES];

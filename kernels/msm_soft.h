@@ -169,11 +169,16 @@ PN_FN pn_float msm_soft_visibility(WindowMoments filter_moments, pn_double z_f, 
 
 /* The receiver's plane (kernels/receiver_slope.h), or none when the plane
  * bias is off (the receivers then hold u, v, z only). */
-PN_FN ReceiverSlope msm_soft_load_slope(PN_GLOBAL const float* receivers, const MomentParams p, int x, int y,
-                                        PN_GLOBAL int* bad_rows)
+PN_FN ReceiverSlope msm_soft_load_slope(PN_GLOBAL const float* receivers, const MomentParams p, Receiver raw, int x,
+                                        int y, PN_GLOBAL int* bad_rows)
 {
     if (p.plane_bias <= 0.0f) return no_receiver_slope();
-    return load_receiver_slope(receivers, p.receivers, x, y, bad_rows);
+    ReceiverSlope s = load_receiver_slope(receivers, p.receivers, x, y, bad_rows);
+    /* The slopes are the stored convention's; the bias is in normalised depth. */
+    const pn_float factor = depth_slope_factor(raw.z, p.convention);
+    s.dzdu = s.dzdu * factor;
+    s.dzdv = s.dzdv * factor;
+    return s;
 }
 
 /* z_f lowered by the receiver plane's largest drop inside window f, capped. */
@@ -192,7 +197,7 @@ PN_KERNEL void msm_soft_##variant(PN_LOOKUP_ARGS(T, MomentParams))              
 {                                                                                                                   \
     PN_LOOKUP_BEGIN(raw);                                                                                           \
     const pn_double z_f = pn_to_double(raw.z) - (double)p.depth_bias;                                               \
-    const ReceiverSlope slope = msm_soft_load_slope(receivers, p, pn_x, pn_y, bad_rows);                           \
+    const ReceiverSlope slope = msm_soft_load_slope(receivers, p, raw, pn_x, pn_y, bad_rows);                      \
     const Receiver r = msm_soft_receiver(raw, p);                                                                   \
     pn_mask lit;                                                                                                    \
     FractionalWindow window = vssm_search_window(msm_soft_geometry(p), r);                                          \

@@ -21,6 +21,21 @@ typedef struct {
     int plane_pitch;
 } pn_dims;
 
+/* How the shadow map's texels and the receivers' z are stored, and their
+ * conversion to the normalised linear depth the methods use
+ * (kernels/depth_convention.h; the host fills it from penumbra::DepthConvention,
+ * host/src/depth_convention.cpp). */
+#define PN_DEPTH_NORMALIZED 0  /* [0, 1], used as stored */
+#define PN_DEPTH_LINEAR 1      /* distance in [near, far] */
+#define PN_DEPTH_PERSPECTIVE 2 /* D3D / Vulkan [0, 1] projected depth */
+#define PN_DEPTH_REVERSED 3    /* reversed Z: 1 - the perspective depth */
+typedef struct {
+    int kind;    /* PN_DEPTH_* */
+    float low;   /* the stored range: [0, 1], or [near, far] (linear) */
+    float high;
+    float scale; /* linear: 1 / (far - near); perspective, reversed: k = (far - near) / near; else 0 */
+} DepthConversion;
+
 /* Summed-area table of depth moments (kernels/moment_table.h).
  * The table stores inclusive sums S(x, y) = sum of m(i, j) for i <= x, j <= y;
  * row y lives at table + (y + 1) * pitch, so that row -1 (table + 0) is a zero
@@ -37,6 +52,7 @@ typedef struct {
     int band_height;   /* rows per band in the banded (OpenCL) schedule */
     float exponent_positive; /* PN_TABLE_EVSM: c+ */
     float exponent_negative; /* PN_TABLE_EVSM: c- */
+    DepthConversion convention; /* the depth map's */
 } SatParams;
 #define PN_TABLE_POWERS 0 /* values z^k */
 #define PN_TABLE_EVSM 1   /* values: EVSM's warps and their squares (kernels/exponential_warp.h) */
@@ -52,6 +68,7 @@ typedef struct {
     float bleed;            /* light-bleeding reduction in [0, 1) */
     float light_size;       /* vssm: texture units, the search width and L in w = L (z - z_b) / z_b */
     int limbs;              /* exact tables: 16-bit limbs per value (SatParams) */
+    DepthConversion convention; /* the receivers' z (and, direct sums, the map's) */
 } ChebyshevParams;
 
 /* Cross-bilateral filter of a mask guided by depth (kernels/bilateral.h). The
@@ -126,6 +143,7 @@ typedef struct {
     int quantize;            /* float tables: 1 rounds each value to a 16-bit step */
     float exponent_positive; /* EVSM: c+ */
     float exponent_negative; /* EVSM: c- */
+    DepthConversion convention; /* the depth map's */
 } EncodedSatParams;
 
 typedef struct {
@@ -147,6 +165,7 @@ typedef struct {
     float bleed;             /* evsm: light-bleeding reduction in [0, 1) */
     float exponent_positive; /* evsm: c+ */
     float exponent_negative; /* evsm: c- */
+    DepthConversion convention; /* the receivers' z (and, direct sums, the map's) */
 } MomentParams;
 
 /* The percentage-closer family (kernels/depth_bias.h, pcf.h, pcf_gauss.h,
@@ -185,6 +204,7 @@ typedef struct {
     int rotate;        /* pcf_disc: 1 rotates the pattern per receiver from a 4x4 tile */
     float sigma;       /* pcf_gauss: the Gaussian's standard deviation, in tap spacings (texels) */
     float disc_radius; /* pcf_disc: the disc's radius in texels (> 0) */
+    DepthConversion convention; /* the map's and the receivers' z */
 } PcfParams;
 
 /* The soft members of the family (kernels/pcss.h, kernels/burley.h), on the
@@ -203,6 +223,7 @@ typedef struct {
     float bias_slope;    /* burley: the cone's slope at z = 0, depth per texture unit */
     float bias_slope_per_depth; /* burley: the slope's growth per unit of receiver depth z */
     float falloff;       /* burley: opacity falloff distance in depth units; 0 = off */
+    DepthConversion convention; /* the map's and the receivers' z */
 } SoftPcfParams;
 
 /* Ambient light rigs in spherical harmonics and ambient volumes

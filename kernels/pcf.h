@@ -27,7 +27,7 @@ PN_FN pn_float pcf_texel(pn_float t, int size)
  * benchmark's gather limit: the same fetches with no comparison). */
 PN_FN pn_float pcf_box_tap(pn_float d, PcfParams p, PcfReceiver r, pn_float x, pn_float y, int compare)
 {
-    return compare ? pcf_lit(d, pcf_tap_reference(r, p.bias, p.depth, x, y)) : d;
+    return compare ? pcf_tap_lit(d, r, p.bias, p.convention, p.depth, x, y) : d;
 }
 
 /* Lit taps of windows that lie inside the map. */
@@ -71,7 +71,7 @@ PN_FN pn_float pcf_box_clipped(PN_GLOBAL const float* depth, PcfParams p, PcfRec
 PN_FN void pcf_box(PN_GLOBAL const float* depth, PN_GLOBAL const float* receivers, PN_GLOBAL float* out,
                    PN_GLOBAL int* bad_rows, PcfParams p, int x, int y, int compare)
 {
-    const PcfReceiver r = pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, x, y, bad_rows);
+    const PcfReceiver r = pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, p.convention, x, y, bad_rows);
     const pn_float tx = pcf_texel(r.u, p.depth.width), ty = pcf_texel(r.v, p.depth.height);
     const float radius = (float)p.radius, w = (float)p.depth.width, h = (float)p.depth.height;
     const pn_float x0 = pn_max(tx - radius, 0.0f), x1 = pn_min(tx + radius + 1.0f, w);

@@ -57,7 +57,8 @@ PN_KERNEL void pcf_disc(PN_GLOBAL const float* depth, PN_GLOBAL const float* rec
                         PN_GLOBAL int* bad_rows, const PcfParams p, PN_PIXEL_ARGS)
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const PcfReceiver r = pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, pn_x, pn_y, bad_rows);
+    const PcfReceiver r =
+        pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, p.convention, pn_x, pn_y, bad_rows);
     const DiscRotation rot = pcf_disc_rotation(pn_lane_x, pn_y, p.rotate);
     const pn_float px = r.u * (float)p.depth.width, py = r.v * (float)p.depth.height;
     const float w = (float)p.depth.width - 1.0f, h = (float)p.depth.height - 1.0f;
@@ -71,7 +72,7 @@ PN_KERNEL void pcf_disc(PN_GLOBAL const float* depth, PN_GLOBAL const float* rec
         const pn_float ox = radius * (rot.c * c - rot.s * s), oy = radius * (rot.s * c + rot.c * s);
         const pn_float tx = pn_clamp(pn_floor(px + ox), 0.0f, w), ty = pn_clamp(pn_floor(py + oy), 0.0f, h);
         const pn_float d = pn_fetch(depth, p.depth, pn_to_int(tx), pn_to_int(ty));
-        lit = lit + pcf_lit(d, pcf_tap_reference(r, p.bias, p.depth, tx, ty));
+        lit = lit + pcf_tap_lit(d, r, p.bias, p.convention, p.depth, tx, ty);
         const double next_c = tap_c * golden_c - tap_s * golden_s;
         tap_s = tap_s * golden_c + tap_c * golden_s;
         tap_c = next_c;

@@ -53,7 +53,8 @@ PN_KERNEL void pcf_gauss(PN_GLOBAL const float* depth, PN_GLOBAL const float* re
                          PN_GLOBAL int* bad_rows, const PcfParams p, PN_PIXEL_ARGS)
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const PcfReceiver r = pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, pn_x, pn_y, bad_rows);
+    const PcfReceiver r =
+        pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, p.convention, pn_x, pn_y, bad_rows);
     const int n = p.grid;
     pn_float g[PN_PCF_MAX_GRID], wx[PN_PCF_MAX_GRID + 1], wy[PN_PCF_MAX_GRID + 1];
     pcf_gauss_taps(n, p.sigma, g);
@@ -71,7 +72,7 @@ PN_KERNEL void pcf_gauss(PN_GLOBAL const float* depth, PN_GLOBAL const float* re
         for (int k = 0; k <= n; ++k) {
             const pn_float tx = pn_clamp(x0 + (float)k, 0.0f, w);
             const pn_float d = pn_fetch(depth, p.depth, pn_to_int(tx), pn_to_int(ty));
-            row = row + wx[k] * pcf_lit(d, pcf_tap_reference(r, p.bias, p.depth, tx, ty));
+            row = row + wx[k] * pcf_tap_lit(d, r, p.bias, p.convention, p.depth, tx, ty);
         }
         visibility = visibility + wy[l] * row;
     }

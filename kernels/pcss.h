@@ -32,8 +32,8 @@
 /* Step 1: the plain mean depth of the blocking taps; `found` marks lanes with one. */
 PN_FN pn_float pcss_blocker_depth(PN_GLOBAL const float* depth, const SoftPcfParams p, PcfReceiver r, pn_mask* found)
 {
-    return hammersley_blocker_depth(depth, p.depth, p.bias, r, 0.5f * p.light_size, p.blocker_samples, 1, 0.0f,
-                                    0.0f, found);
+    return hammersley_blocker_depth(depth, p.depth, p.convention, p.bias, r, 0.5f * p.light_size, p.blocker_samples,
+                                    1, 0.0f, 0.0f, found);
 }
 
 /* Step 2: the filter disc's radius, w / 2, in texture units. */
@@ -47,11 +47,13 @@ PN_KERNEL void pcss(PN_GLOBAL const float* depth, PN_GLOBAL const float* receive
                     PN_GLOBAL int* bad_rows, const SoftPcfParams p, PN_PIXEL_ARGS)
 {
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
-    const PcfReceiver r = pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, pn_x, pn_y, bad_rows);
+    const PcfReceiver r =
+        pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, p.convention, pn_x, pn_y, bad_rows);
     pn_mask found;
     const pn_float z_blocker = pcss_blocker_depth(depth, p, r, &found);
     const pn_float radius = pcss_filter_radius(p, r.z, z_blocker);
-    const pn_float visibility = hammersley_disc_visibility(depth, p.depth, p.bias, r, radius, p.filter_samples, 0.0f);
+    const pn_float visibility =
+        hammersley_disc_visibility(depth, p.depth, p.convention, p.bias, r, radius, p.filter_samples, 0.0f);
     pn_store(out, p.out, pn_x, pn_y, pn_select(found, visibility, 1.0f));
 }
 

@@ -1,5 +1,6 @@
 // penumbra shade: the file contract of issue 2.
-//   SM.exr  one float channel Z: light-space depth in [0, 1] per texel
+//   SM.exr  one float channel Z (or --depth-channel NAME): light-space depth
+//           per texel, in [0, 1] or in the --depth-convention given
 //           (or, for a method that reads a deep shadow map, DSM.exr: a deep
 //           OpenEXR file, penumbra/deep_exr.h; for pismo, the maps rendered
 //           from --scene with cameras fitted to the receivers, or a directory
@@ -20,6 +21,7 @@
 #include <future>
 #include <iostream>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "args.h"
@@ -41,6 +43,8 @@ namespace {
 // Pismo's maps are rendered from a scene (the reference tracer) when no
 // directory of maps is given; the flags that shape them go with the scene.
 constexpr const char* kSceneFlag = "--scene";
+// SM.exr's depth channel, for files whose channel is not Z (depth.Z, R).
+constexpr const char* kDepthChannelFlag = "--depth-channel";
 
 std::string shade_help()
 {
@@ -50,7 +54,9 @@ std::string shade_help()
            "       penumbra shade --method dsm --deep-map DSM.exr --receivers RX.exr --out OUT.exr [--filter box|tent]\n"
            "       penumbra shade --method pismo|pismo-maxdepth (--scene S | --pismo-maps DIR) --receivers RX.exr\n"
            "                      --out OUT.exr [--rays R] [--light-level L] [--map-size N] [--layers K]\n"
-           "  SM.exr: float channel Z, light depth in [0, 1]; DSM.exr: a deep OpenEXR file (dsm-build writes one);\n"
+           "  SM.exr: float channel Z (or --depth-channel NAME, e.g. depth.Z or R), light depth in [0, 1], or in\n"
+           "  the convention that --depth-convention names (near, far: the light's); RX.exr's z is in the same one;\n"
+           "  DSM.exr: a deep OpenEXR file (dsm-build writes one);\n"
            "  RX.exr: float channels u, v, z (pismo: P.x, P.y, P.z, world positions, and the normals N.x, N.y, N.z if present);\n"
            "  pismo renders its maps from --scene, cameras fitted to the receivers, or reads pismo-build's DIR:\n" +
            pismo_map_options_help() +
@@ -59,12 +65,13 @@ std::string shade_help()
            "  double): within 2e-4 (vsm, vssm, evsm*) / 1e-3 (msm*) of its float64 evaluation (docs/moments.md).\n"
            "methods:\n" +
            methods_help() + "options:\n" + method_options_help("--") +
+           "  --depth-channel NAME  SM.exr's depth channel (default Z), for the methods that read a shadow map\n"
            "  --backend B        auto (default), simd, opencl or scalar\n";
 }
 
 std::set<std::string> shade_flags()
 {
-    std::set<std::string> flags = {"--method", "--receivers", "--out", "--backend", kSceneFlag};
+    std::set<std::string> flags = {"--method", "--receivers", "--out", "--backend", kSceneFlag, kDepthChannelFlag};
     flags.insert(kPismoMapFlags.begin(), kPismoMapFlags.end());
     for (const MethodInputInfo& i : method_inputs()) flags.insert(std::string("--") + i.flag);
     for (const MethodOption& o : method_options()) flags.insert(std::string("--") + o.name);
@@ -83,7 +90,21 @@ std::vector<std::pair<std::string, std::string>> given_options(const Args& args)
 struct ShadeFiles {
     std::string map, receivers;  // map: the file of the method's input (method_inputs())
     MethodInput input;
+    std::string depth_channel = "Z";  // a shadow map's
+    DepthConvention convention{};     // a shadow map's, once the options are parsed
 };
+
+// --depth-channel: read by the methods that read a shadow map.
+std::string depth_channel(const Args& args, const Method& method)
+{
+    const auto name = args.get(kDepthChannelFlag);
+    if (!name) return "Z";
+    if (method.input != MethodInput::ShadowMap)
+        throw UsageError{std::string("option --depth-channel: ") + method.name + " reads a " +
+                         input_info(method.input).what + ", not a shadow map's channel"};
+    if (name->empty()) throw UsageError{"option --depth-channel: give a channel name (Z, depth.Z, R, ...)"};
+    return *name;
+}
 
 bool renders_pismo_maps(const Args& args, const Method& method)
 {
@@ -120,6 +141,13 @@ std::string input_path(const Args& args, const Method& method)
     return args.required(std::string("--") + wanted.flag);
 }
 
+std::string format_number(float value)
+{
+    std::ostringstream text;
+    text << value;
+    return text.str();
+}
+
 // The library names the parameter at fault; the user knows flags and files.
 // A bad value in an image is named by file, channel and pixel.
 [[noreturn]] void rethrow_naming_flag_or_file(const Error& e, const ShadeFiles& files)
@@ -135,15 +163,18 @@ std::string input_path(const Args& args, const Method& method)
     if (!e.pixel()) throw Error(e.category(), "shade", path + ": " + e.message());
     static const char* const kReceiverChannels[] = {"u", "v", "z", "dzdu", "dzdv"};
     const BadPixel& bad = *e.pixel();
-    const std::string channel = is_map                                     ? "Z"
+    const std::string channel = is_map                                     ? files.depth_channel
                                 : files.input == MethodInput::PismoMapSet ? kWorldPositionChannels[bad.channel % 3]
                                                                           : kReceiverChannels[bad.channel % 5];
     const std::string where = path + ": channel " + channel +
                               " at pixel (" + std::to_string(bad.x) + ", " + std::to_string(bad.y) + ") is " +
                               std::to_string(bad.value);
+    const StoredDepthRange range = stored_depth_range(files.convention);
+    const std::string outside = ", outside [" + format_number(range.low) + ", " + format_number(range.high) +
+                                "], the range of " + describe(files.convention) +
+                                "; give the map's --depth-convention (and --near, --far)";
     throw Error(ErrorCategory::InvalidData, "shade",
-                where + (std::isfinite(bad.value) ? ", outside [0, 1]; depths must be normalised"
-                                                  : "; NaN and infinite values are not accepted"));
+                where + (std::isfinite(bad.value) ? outside : "; NaN and infinite values are not accepted"));
 }
 
 // Sets `flag` when the scope is left by an exception.
@@ -225,7 +256,8 @@ int shade_command(const std::vector<std::string>& argv)
     } catch (const Error& e) {
         throw UsageError{"option --method: " + e.message()};
     }
-    const ShadeFiles files{input_path(args, *method), args.required("--receivers"), method->input};
+    ShadeFiles files{input_path(args, *method), args.required("--receivers"), method->input,
+                     depth_channel(args, *method)};
     const std::string out_path = args.required("--out");
     require_safe_outputs({out_path}, {files.map, files.receivers}, "shade");
     Backend backend;
@@ -236,6 +268,7 @@ int shade_command(const std::vector<std::string>& argv)
     }
     try {
         const MethodSettings settings = parse_method_settings(*method, given_options(args));
+        files.convention = settings.depth_convention;
         // The backend starts, and loads the method's programs, while the inputs are read (OpenCL: tens of ms).
         // An input that fails to read skips the warm-up, so that its error does not wait for program
         // builds (seconds on a cold cache): the future's destructor waits for the thread.
@@ -255,7 +288,7 @@ int shade_command(const std::vector<std::string>& argv)
         else if (method->input == MethodInput::PismoMapSet)
             shade_from(pismo_maps_for(args, *method, files));
         else
-            shade_from(read_input(files.map, {"Z"}, "shadow map"));
+            shade_from(read_input(files.map, {files.depth_channel}, "shadow map"));
     } catch (const Error& e) {
         rethrow_naming_flag_or_file(e, files);
     }

@@ -6,6 +6,7 @@
 
 #include "checked_lookup.h"
 #include "chebyshev_params.h"
+#include "depth_conversion.h"
 #include "visibility_output.h"
 #include "window_limits.h"
 #include "penumbra/error.h"
@@ -95,8 +96,9 @@ void vsm(Context& context, const MomentTable& table, const Image& receivers, con
     const std::string op = "vsm";
     check_table(op, table);
     check_receivers(op, receivers);
-    const ChebyshevParams p = detail::vsm_table_params(op, detail::dims_of(table), table.precision(), table.limbs(),
-                                                       detail::dims_of(receivers), detail::dims_of(out), options);
+    ChebyshevParams p = detail::vsm_table_params(op, detail::dims_of(table), table.precision(), table.limbs(),
+                                                 detail::dims_of(receivers), detail::dims_of(out), options);
+    p.convention = detail::receivers_conversion(op, table.values().depth, options.depth_convention);
     check_output(op, receivers, out);
     detail::checked_table_lookup<KernelId::vsm_float, KernelId::vsm_exact>(context.impl(), op, table, receivers, p,
                                                                            out);
@@ -111,7 +113,9 @@ void vsm(Context& context, const Image& depth, const Image& receivers, const Vsm
     check_output(op, receivers, out);
     ChebyshevParams p = base_params(receivers, out, options.min_variance, options.bleed);
     p.radius = options.radius;
-    detail::checked_direct_lookup<KernelId::vsm_direct>(context.impl(), op, depth, receivers, p, out);
+    p.convention = detail::kernel_conversion(options.depth_convention);
+    detail::checked_direct_lookup<KernelId::vsm_direct>(context.impl(), op, depth, receivers,
+                                                 options.depth_convention, p, out);
 }
 
 void vssm(Context& context, const MomentTable& table, const Image& receivers, const VssmOptions& options, Image& out)
@@ -121,8 +125,9 @@ void vssm(Context& context, const MomentTable& table, const Image& receivers, co
     check_receivers(op, receivers);
     check_filter(op, options.min_variance, options.bleed);
     check_output(op, receivers, out);
-    const ChebyshevParams p = detail::vssm_table_params(op, detail::dims_of(table), table.precision(), table.limbs(),
-                                                        detail::dims_of(receivers), detail::dims_of(out), options);
+    ChebyshevParams p = detail::vssm_table_params(op, detail::dims_of(table), table.precision(), table.limbs(),
+                                                  detail::dims_of(receivers), detail::dims_of(out), options);
+    p.convention = detail::receivers_conversion(op, table.values().depth, options.depth_convention);
     detail::checked_table_lookup<KernelId::vssm_float, KernelId::vssm_exact>(context.impl(), op, table, receivers, p,
                                                                              out);
 }

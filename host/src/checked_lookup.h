@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "host/backend/backend.h"
+#include "penumbra/depth_convention.h"
 #include "penumbra/image.h"
 
 namespace penumbra::detail {
@@ -25,18 +26,19 @@ void checked_lookup(const std::string& op, const Image& receivers, Lookup&& look
         require_finite(receivers, op, "the receivers image", "receivers");
 }
 
-// A shadow map an entry reads itself: one channel of depths in [0, 1]
-// (Error(InvalidArgument), parameter "depth", naming the first bad texel).
-void check_shadow_map(const Image& map, const std::string& op);
+// A shadow map an entry reads itself: one channel of depths in the
+// convention's range ([0, 1] by default; Error, parameter "depth", naming the
+// first bad texel).
+void check_shadow_map(const Image& map, const std::string& op, const DepthConvention& convention = {});
 
 // A box method's window summed directly from the map (the `_direct` entries,
 // kernels/box_window.h): the map checked, its dims as the Params' `table`
 // (the source's dims), then the checked lookup.
 template <KernelId K>
 void checked_direct_lookup(BackendImpl& backend, const std::string& op, const Image& map, const Image& receivers,
-                           typename KernelTraits<K>::Params params, Image& out)
+                           const DepthConvention& convention, typename KernelTraits<K>::Params params, Image& out)
 {
-    check_shadow_map(map, op);
+    check_shadow_map(map, op, convention);
     params.table = dims_of(map);
     checked_lookup(op, receivers,
                    [&](int* bad_rows) { receiver_lookup<K>(backend, map, receivers, params, out, bad_rows); });

@@ -217,11 +217,21 @@ Event chebyshev_lookup(Context& context, const std::string& op, const DeviceMome
     return enqueued(queue);
 }
 
+// The device chain's tables and lookups read normalised depth only
+// (docs/integration.md, "Depth conventions": not carried to the device path).
+void require_normalized(const std::string& op, const DepthConvention& convention)
+{
+    require(convention.kind == DepthConventionKind::Normalized, op, "depth-convention",
+            "the device-resident chain reads normalized depth only, not " + describe(convention) +
+                "; shade through the Image or view forms, which convert in the kernels' load");
+}
+
 }  // namespace
 
 Event vsm(Context& context, const DeviceMomentTable& table, const DeviceImage& receivers, const VsmOptions& options,
           DeviceImage& out)
 {
+    require_normalized("vsm", options.depth_convention);
     return chebyshev_lookup<detail::KernelId::vsm_float, detail::KernelId::vsm_exact>(
         context, "vsm", table, receivers, out,
         [&](const detail::DeviceTableData& t, pn_dims rx, pn_dims o) {
@@ -233,6 +243,7 @@ Event vsm(Context& context, const DeviceMomentTable& table, const DeviceImage& r
 Event vssm(Context& context, const DeviceMomentTable& table, const DeviceImage& receivers, const VssmOptions& options,
            DeviceImage& out)
 {
+    require_normalized("vssm", options.depth_convention);
     return chebyshev_lookup<detail::KernelId::vssm_float, detail::KernelId::vssm_exact>(
         context, "vssm", table, receivers, out,
         [&](const detail::DeviceTableData& t, pn_dims rx, pn_dims o) {

@@ -146,6 +146,38 @@ void set_deep_search(const Method& m, const std::string& text, MethodSettings& s
     s.deep_search = DeepSearch(parse_word(m, "search", text, kSearches));
 }
 
+void set_depth_convention(const Method& m, const std::string& text, MethodSettings& s)
+{
+    try {
+        s.depth_convention.kind = parse_depth_convention(text);
+    } catch (const Error& e) {
+        throw e.as_operation(m.name);
+    }
+}
+
+void set_near(const Method& m, const std::string& text, MethodSettings& s)
+{
+    s.depth_convention.near = parse_float(m, "near", text);
+}
+
+void set_far(const Method& m, const std::string& text, MethodSettings& s)
+{
+    s.depth_convention.far = parse_float(m, "far", text);
+}
+
+// near and far belong to the conventions that read them; those need both.
+void check_convention_options(const Method& m, const std::vector<std::pair<std::string, std::string>>& given,
+                              const MethodSettings& s)
+{
+    if (s.depth_convention.kind != DepthConventionKind::Normalized)
+        return check_depth_convention(s.depth_convention, m.name);
+    for (const auto& [name, text] : given)
+        if (name == "near" || name == "far")
+            throw bad_value(m, name,
+                            name + " applies to the linear, perspective and reversed depth conventions, not to "
+                                   "normalized depth (the default); give the convention too");
+}
+
 const MethodOption* find_option(std::string_view name)
 {
     for (const MethodOption& o : method_options())
@@ -254,6 +286,15 @@ const std::vector<MethodOption>& method_options()
          "the deep map's lookup filter: box, (2R+1)^2 pixels around the receiver's; tent, bilinear of half-width "
          "R+1 texels, (2R+2)^2 pixels",
          "tent", nullptr, false, set_deep_filter},
+        {"depth-convention", "C",
+         "how the shadow map's depths and the receivers' z are stored: normalized ([0, 1]), linear (distance in "
+         "[near, far]), perspective (D3D/Vulkan [0, 1] projected depth) or reversed (1 - perspective); biases stay "
+         "in normalised depth (docs/integration.md)",
+         "normalized", nullptr, false, set_depth_convention},
+        {"near", "N", "the light's near distance (linear, perspective, reversed: required; > 0 but for linear)",
+         "none", nullptr, false, set_near},
+        {"far", "F", "the light's far distance, > near and finite (linear, perspective, reversed: required)", "none",
+         nullptr, false, set_far},
         {"search", "linear|binary", "how a deep pixel's vertices are searched for the receiver's depth (one result)",
          "linear (measured faster, docs/deep_shadow_maps.md)", nullptr, false, set_deep_search},
     };
@@ -281,6 +322,7 @@ MethodSettings parse_method_settings(const Method& method,
             throw bad_value(method, name, "applies to " + readers(name) + " only");
         option->parse(method, text, settings);
     }
+    if (reads(method, "depth-convention")) check_convention_options(method, given, settings);
     return settings;
 }
 

@@ -25,7 +25,7 @@ bool direct_window(const MethodSettings& s, int max_radius)
 // Chebyshev methods: the two-moment table (exact, the default).
 PreparedMap prepare_moment_table(Context& context, const Image& map, const MethodSettings& s)
 {
-    return PreparedMap(map, build_moment_table(context, map, 2, s.precision));
+    return PreparedMap(map, build_moment_table(context, map, 2, s.precision, s.depth_convention));
 }
 
 PreparedMap prepare_vsm(Context& context, const Image& map, const MethodSettings& s)
@@ -37,7 +37,7 @@ PreparedMap prepare_vsm(Context& context, const Image& map, const MethodSettings
 void shade_vsm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                Image& out)
 {
-    const VsmOptions options{s.radius, s.min_variance, s.bleed};
+    const VsmOptions options{s.radius, s.min_variance, s.bleed, s.depth_convention};
     if (!prepared.has_table()) return vsm(context, prepared.map(), receivers, options, out);
     vsm(context, prepared.table<MomentTable>(), receivers, options, out);
 }
@@ -45,13 +45,13 @@ void shade_vsm(Context& context, const PreparedMap& prepared, const Image& recei
 void shade_vssm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                 Image& out)
 {
-    vssm(context, prepared.table<MomentTable>(), receivers, VssmOptions{s.light_size, s.min_variance, s.bleed},
-         out);
+    vssm(context, prepared.table<MomentTable>(), receivers,
+         VssmOptions{s.light_size, s.min_variance, s.bleed, s.depth_convention}, out);
 }
 
 PreparedMap prepare_msm_table(Context& context, const Image& map, const MethodSettings& s)
 {
-    return PreparedMap(map, build_msm_table(context, map, s.quantization, s.precision));
+    return PreparedMap(map, build_msm_table(context, map, s.quantization, s.precision, s.depth_convention));
 }
 
 PreparedMap prepare_msm(Context& context, const Image& map, const MethodSettings& s)
@@ -63,7 +63,7 @@ PreparedMap prepare_msm(Context& context, const Image& map, const MethodSettings
 void shade_msm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                Image& out)
 {
-    const MsmOptions options{s.radius, s.moment_bias, s.depth_bias};
+    const MsmOptions options{s.radius, s.moment_bias, s.depth_bias, s.depth_convention};
     if (!prepared.has_table()) return msm(context, prepared.map(), receivers, options, out);
     msm(context, prepared.table<MsmTable>(), receivers, options, out);
 }
@@ -71,8 +71,8 @@ void shade_msm(Context& context, const PreparedMap& prepared, const Image& recei
 void shade_msm_soft(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                     Image& out)
 {
-    const MsmSoftOptions options{s.light_size, s.moment_bias, s.depth_bias,
-                                 s.plane_bias, s.plane_bias_max, s.derivatives};
+    const MsmSoftOptions options{s.light_size,     s.moment_bias, s.depth_bias,       s.plane_bias,
+                                 s.plane_bias_max, s.derivatives, s.depth_convention};
     msm_soft(context, prepared.table<MsmTable>(), receivers, options, out);
 }
 
@@ -87,14 +87,14 @@ template <int Channels>
 PreparedMap prepare_evsm(Context& context, const Image& map, const MethodSettings& s)
 {
     if (direct_window(s, kEvsmDirectMaxRadius)) return PreparedMap(map);
-    return PreparedMap(map, build_evsm_table(context, map, evsm_warp<Channels>(s), s.precision));
+    return PreparedMap(map, build_evsm_table(context, map, evsm_warp<Channels>(s), s.precision, s.depth_convention));
 }
 
 template <int Channels>
 void shade_evsm(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                 Image& out)
 {
-    const EvsmOptions options{s.radius, s.min_variance, s.bleed, s.depth_bias.value_or(0.0f)};
+    const EvsmOptions options{s.radius, s.min_variance, s.bleed, s.depth_bias.value_or(0.0f), s.depth_convention};
     if (!prepared.has_table()) return evsm(context, prepared.map(), evsm_warp<Channels>(s), receivers, options, out);
     evsm(context, prepared.table<EvsmTable>(), receivers, options, out);
 }
@@ -109,20 +109,21 @@ DepthBias depth_bias_of(const MethodSettings& s)
 void shade_pcf(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                Image& out)
 {
-    pcf(context, prepared.map(), receivers, PcfOptions{s.radius, depth_bias_of(s)}, out);
+    pcf(context, prepared.map(), receivers, PcfOptions{s.radius, depth_bias_of(s), s.depth_convention}, out);
 }
 
 void shade_pcf_gauss(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                      Image& out)
 {
-    pcf_gauss(context, prepared.map(), receivers, PcfGaussOptions{s.grid, s.sigma, depth_bias_of(s)}, out);
+    pcf_gauss(context, prepared.map(), receivers,
+              PcfGaussOptions{s.grid, s.sigma, depth_bias_of(s), s.depth_convention}, out);
 }
 
 void shade_pcf_disc(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,
                     Image& out)
 {
-    pcf_disc(context, prepared.map(), receivers, PcfDiscOptions{s.taps, s.disc_radius, s.rotate, depth_bias_of(s)},
-             out);
+    pcf_disc(context, prepared.map(), receivers,
+             PcfDiscOptions{s.taps, s.disc_radius, s.rotate, depth_bias_of(s), s.depth_convention}, out);
 }
 
 // The soft members of the percentage-closer family read the map itself,
@@ -139,6 +140,7 @@ void shade_pcss(Context& context, const PreparedMap& prepared, const Image& rece
 {
     PcssOptions options{s.light_size, s.blocker_samples, s.filter_samples};
     options.bias = family_bias(s, options.bias.constant);
+    options.depth_convention = s.depth_convention;
     pcss(context, prepared.map(), receivers, options, out);
 }
 
@@ -153,6 +155,7 @@ void shade_burley(Context& context, const PreparedMap& prepared, const Image& re
                           .blocker_samples = s.blocker_samples,
                           .filter_samples = s.filter_samples};
     options.bias = family_bias(s, options.bias.constant);
+    options.depth_convention = s.depth_convention;
     burley(context, prepared.map(), receivers, options, out);
 }
 
@@ -299,50 +302,64 @@ void Method::warm_up(Context& context, const MethodSettings& settings) const
         (void)run(context, one_triangle_set(), receivers, settings);
         return;
     }
+    // u, v, z (mid-range in the settings' depth convention); dzdu, dzdv.
+    const StoredDepthRange depths = stored_depth_range(settings.depth_convention);
+    const float middle = 0.5f * depths.low + 0.5f * depths.high;
     Image receivers(1, 1, int(receiver_channels(settings).size()));
-    for (int c = 0; c < receivers.channels(); ++c) receivers.fill(c, c < 3 ? 0.5f : 0.0f);  // u, v, z; dzdu, dzdv
+    for (int c = 0; c < receivers.channels(); ++c) receivers.fill(c, c < 2 ? 0.5f : c == 2 ? middle : 0.0f);
     if (input == MethodInput::DeepMap) {
         (void)run(context, DeepShadowMap(1, 1, {0, 0}, {}, {}), receivers, settings);  // one empty pixel
         return;
     }
     Image map(1, 1, 1);
-    map.fill(0, 0.5f);
+    map.fill(0, middle);
     (void)run(context, map, receivers, settings);
+}
+
+// The options of a method that reads a shadow map, and its depth convention's.
+std::vector<std::string_view> reading_a_map(std::vector<std::string_view> options)
+{
+    options.insert(options.end(), {"depth-convention", "near", "far"});
+    return options;
 }
 
 const std::vector<Method>& methods()
 {
     static const std::vector<Method> table = {
         {"vsm", "variance shadow maps: Chebyshev bound over a box window (Donnelly & Lauritzen 2006)",
-         {"radius", "min-variance", "bleed"}, prepare_vsm, shade_vsm},
+         reading_a_map({"radius", "min-variance", "bleed"}), prepare_vsm, shade_vsm},
         {"vssm", "variance soft shadow maps: blocker search sized by the light (Yang et al. 2010)",
-         {"light-size", "min-variance", "bleed"}, prepare_moment_table, shade_vssm},
+         reading_a_map({"light-size", "min-variance", "bleed"}), prepare_moment_table, shade_vssm},
         {"msm", "moment shadow maps: four moments, Hamburger bound (Peters & Klein 2015)",
-         {"radius", "moment-bias", "depth-bias", "quantize"}, prepare_msm, shade_msm},
+         reading_a_map({"radius", "moment-bias", "depth-bias", "quantize"}), prepare_msm, shade_msm},
         {"msm-soft", "moment soft shadows: blocker search on four moments (Peters et al. 2016)",
-         {"light-size", "moment-bias", "depth-bias", "plane-bias", "plane-bias-max", "bias-derivatives", "quantize"},
+         reading_a_map({"light-size", "moment-bias", "depth-bias", "plane-bias", "plane-bias-max", "bias-derivatives",
+                        "quantize"}),
          prepare_msm_table, shade_msm_soft},
         {"evsm2", "exponential variance shadow maps, positive warp (Lauritzen & McCool 2008)",
-         {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, prepare_evsm<2>, shade_evsm<2>},
+         reading_a_map({"radius", "min-variance", "bleed", "depth-bias", "exponents"}), prepare_evsm<2>, shade_evsm<2>},
         {"evsm4", "exponential variance shadow maps, both warps (Lauritzen & McCool 2008)",
-         {"radius", "min-variance", "bleed", "depth-bias", "exponents"}, prepare_evsm<4>, shade_evsm<4>},
+         reading_a_map({"radius", "min-variance", "bleed", "depth-bias", "exponents"}), prepare_evsm<4>, shade_evsm<4>},
         {"pcf", "percentage-closer filtering over a box window (Reeves et al. 1987)",
-         {"radius", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale", "bias-derivatives"},
+         reading_a_map(
+             {"radius", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale", "bias-derivatives"}),
          prepare_map, shade_pcf},
         {"pcf-gauss", "PCF on an NxN grid of Gaussian-weighted bilinear taps (Toy Story 3, 2010)",
-         {"grid", "sigma", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale", "bias-derivatives"},
+         reading_a_map({"grid", "sigma", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale",
+                        "bias-derivatives"}),
          prepare_map, shade_pcf_gauss},
         {"pcf-disc", "PCF over a Vogel-spiral disc rotated per receiver from a 4x4 tile (Toy Story 3)",
-         {"taps", "disc-radius", "rotation", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale",
-          "bias-derivatives"},
+         reading_a_map({"taps", "disc-radius", "rotation", "depth-bias", "bias-mode", "bias-min", "bias-max",
+                        "slope-scale", "bias-derivatives"}),
          prepare_map, shade_pcf_disc},
         {"pcss", "percentage-closer soft shadows: blocker search, width, PCF on a disc (Fernando 2005)",
-         {"light-size", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale", "bias-derivatives",
-          "blocker-samples", "filter-samples", "preset"},
+         reading_a_map({"light-size", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale",
+                        "bias-derivatives", "blocker-samples", "filter-samples", "preset"}),
          prepare_map, shade_pcss},
         {"burley", "soft shadows on the bias cone, weighted blocker depth (Burley, Disney)",
-         {"min-radius", "max-radius", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale",
-          "bias-derivatives", "bias-slope", "bias-slope-per-depth", "falloff", "blocker-samples", "filter-samples"},
+         reading_a_map({"min-radius", "max-radius", "depth-bias", "bias-mode", "bias-min", "bias-max", "slope-scale",
+                        "bias-derivatives", "bias-slope", "bias-slope-per-depth", "falloff", "blocker-samples",
+                        "filter-samples"}),
          prepare_map, shade_burley},
         {"dsm", "deep shadow maps: filtered lookup of per-pixel transmittance functions (Lokovic & Veach 2000)",
          {"radius", "depth-bias", "filter", "search"}, nullptr, shade_dsm, MethodInput::DeepMap, prepare_deep_map},

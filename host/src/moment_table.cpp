@@ -9,6 +9,7 @@
 #include <cstring>
 #include <string>
 
+#include "depth_conversion.h"
 #include "host/backend/backend.h"
 #include "penumbra/error.h"
 
@@ -164,13 +165,16 @@ static void build_checked(Context& context, const Image& depth, MomentTable& tab
 {
     std::vector<int> bad_rows(std::size_t(depth.height()), 0);
     context.impl().build_moment_table(depth, table, bad_rows.data());
-    if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end()) require_unit_depths(depth, "build_moment_table");
+    if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end())
+        require_depths_in(depth, table.values().depth, "build_moment_table");
 }
 
-MomentTable build_moment_table(Context& context, const Image& depth, int moments, Precision precision)
+MomentTable build_moment_table(Context& context, const Image& depth, int moments, Precision precision,
+                               const DepthConvention& convention)
 {
     check_depth_map_shape(depth);
-    MomentTable table(depth.width(), depth.height(), moments, precision);
+    check_depth_convention(convention, "build_moment_table");
+    MomentTable table(depth.width(), depth.height(), moments, precision, kVsmLimbs, TableValues{0, 0, 0, convention});
     build_checked(context, depth, table);
     return table;
 }
@@ -213,6 +217,7 @@ SatParams sat_params(const Image& depth, const MomentTable& table, int column_ro
     p.encoding = table.values().kind;
     p.exponent_positive = table.values().positive;
     p.exponent_negative = table.values().negative;
+    p.convention = kernel_conversion(table.values().depth);
     return p;
 }
 

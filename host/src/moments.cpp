@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "checked_lookup.h"
+#include "depth_conversion.h"
 #include "visibility_output.h"
 #include "window_limits.h"
 #include "penumbra/error.h"
@@ -41,14 +42,16 @@ void check_storage(const std::string& op, Quantization quantization, Precision p
 }
 
 MomentTable build_encoded(Context& context, const std::string& op, const Image& depth, EncodedSatParams p,
-                          Precision precision)
+                          Precision precision, const DepthConvention& convention)
 {
-    MomentTable table(depth.width(), depth.height(), p.channels, precision, 1);
+    const TableValues values{0, 0.0f, 0.0f, convention};  // the kind: unused by the encoded lookups
+    MomentTable table(depth.width(), depth.height(), p.channels, precision, 1, values);
     p.depth = detail::dims_of(depth);
     p.table = detail::dims_of(table);
+    p.convention = detail::kernel_conversion(convention);
     std::vector<int> bad_rows(std::size_t(depth.height()), 0);
     context.impl().build_encoded_table(depth, p, table, bad_rows.data());
-    if (any_flagged(bad_rows)) require_unit_depths(depth, op);
+    if (any_flagged(bad_rows)) require_depths_in(depth, values.depth, op);
     return table;
 }
 
@@ -200,23 +203,30 @@ Quantization parse_quantization(const std::string& bits)
 
 // ---- tables ------------------------------------------------------------------
 
-MsmTable build_msm_table(Context& context, const Image& depth, Quantization quantization, Precision precision)
+MsmTable build_msm_table(Context& context, const Image& depth, Quantization quantization, Precision precision,
+                         const DepthConvention& convention)
 {
     const std::string op = "build_msm_table";
     check_depth_map(op, depth);
     check_storage(op, quantization, precision);
-    if (quantization != Quantization::Bits16) return {moment_table_as(context, op, depth, 4, precision), quantization};
+    check_depth_convention(convention, op);
+    if (quantization != Quantization::Bits16) {
+        const TableValues powers{PN_TABLE_POWERS, 0.0f, 0.0f, convention};
+        return {moment_table_as(context, op, depth, 4, precision, powers), quantization};
+    }
     EncodedSatParams p{};
     p.channels = 4;
     p.encoding = PN_ENCODE_MSM;
     p.quantize = 1;
-    return {build_encoded(context, op, depth, p, precision), quantization};
+    return {build_encoded(context, op, depth, p, precision, convention), quantization};
 }
 
-EvsmTable build_evsm_table(Context& context, const Image& depth, const EvsmWarp& warp, Precision precision)
+EvsmTable build_evsm_table(Context& context, const Image& depth, const EvsmWarp& warp, Precision precision,
+                           const DepthConvention& convention)
 {
     const std::string op = "build_evsm_table";
     check_depth_map(op, depth);
+    check_depth_convention(convention, op);
     check_storage(op, warp.quantization, precision);
     require(warp.channels == 2 || warp.channels == 4, op,
             "channels must be 2 (EVSM2: positive warp) or 4 (EVSM4: both warps), got " +
@@ -228,7 +238,7 @@ EvsmTable build_evsm_table(Context& context, const Image& depth, const EvsmWarp&
     table.negative = warp.channels == 4 ? checked_exponent(op, warp.negative, warp.quantization, false) : 0.0f;
     if (warp.quantization == Quantization::None) {
         table.sums = moment_table_as(context, op, depth, warp.channels, precision,
-                                     TableValues{PN_TABLE_EVSM, table.positive, table.negative});
+                                     TableValues{PN_TABLE_EVSM, table.positive, table.negative, convention});
         return table;
     }
     EncodedSatParams p{};
@@ -237,7 +247,7 @@ EvsmTable build_evsm_table(Context& context, const Image& depth, const EvsmWarp&
     p.quantize = warp.quantization == Quantization::Bits16;
     p.exponent_positive = table.positive;
     p.exponent_negative = table.negative;
-    table.sums = build_encoded(context, op, depth, p, precision);
+    table.sums = build_encoded(context, op, depth, p, precision, convention);
     return table;
 }
 
@@ -256,6 +266,7 @@ void msm(Context& context, const MsmTable& table, const Image& receivers, const 
     MomentParams p = base_params(table.sums, receivers, out);
     set_msm_biases(p, op, table.quantization, options.moment_bias, options.depth_bias);
     p.radius = options.radius;
+    p.convention = detail::receivers_conversion(op, table.sums.values().depth, options.depth_convention);
     detail::checked_table_lookup<KernelId::msm_float, KernelId::msm_exact>(context.impl(), op, table.sums, receivers, p,
                                                                            out);
 }
@@ -268,7 +279,9 @@ void msm(Context& context, const Image& depth, const Image& receivers, const Msm
     MomentParams p = base_params(receivers, out);
     set_msm_biases(p, op, Quantization::None, options.moment_bias, options.depth_bias);
     p.radius = options.radius;
-    detail::checked_direct_lookup<KernelId::msm_direct>(context.impl(), op, depth, receivers, p, out);
+    p.convention = detail::kernel_conversion(options.depth_convention);
+    detail::checked_direct_lookup<KernelId::msm_direct>(context.impl(), op, depth, receivers,
+                                                 options.depth_convention, p, out);
 }
 
 namespace {
@@ -303,6 +316,7 @@ void msm_soft(Context& context, const MsmTable& table, const Image& receivers, c
     p.max_radius = max_radius;
     p.plane_bias = options.plane_bias;
     p.plane_bias_max = options.plane_bias_max;
+    p.convention = detail::receivers_conversion(op, table.sums.values().depth, options.depth_convention);
     detail::checked_table_lookup<KernelId::msm_soft_float, KernelId::msm_soft_exact>(context.impl(), op, table.sums,
                                                                                      rx, p, out);
 }
@@ -345,6 +359,7 @@ void evsm(Context& context, const EvsmTable& table, const Image& receivers, cons
     detail::check_radius(op, options.radius, table.sums.precision());
     MomentParams p = base_params(table.sums, receivers, out);
     set_evsm_options(p, op, options, table.channels, table.positive, table.negative, table.quantization);
+    p.convention = detail::receivers_conversion(op, table.sums.values().depth, options.depth_convention);
     detail::checked_table_lookup<KernelId::evsm_float, KernelId::evsm_exact>(context.impl(), op, table.sums, receivers,
                                                                              p, out);
 }
@@ -370,7 +385,9 @@ void evsm(Context& context, const Image& depth, const EvsmWarp& warp, const Imag
     const float positive = warp.positive.value_or(default_evsm_exponent(Quantization::None, true));
     const float negative = warp.negative.value_or(default_evsm_exponent(Quantization::None, false));
     set_evsm_options(p, op, options, warp.channels, positive, negative, Quantization::None);
-    detail::checked_direct_lookup<KernelId::evsm_direct>(context.impl(), op, depth, receivers, p, out);
+    p.convention = detail::kernel_conversion(options.depth_convention);
+    detail::checked_direct_lookup<KernelId::evsm_direct>(context.impl(), op, depth, receivers,
+                                                 options.depth_convention, p, out);
 }
 
 }  // namespace penumbra

@@ -62,7 +62,8 @@ void pcf(Context& context, const Image& map, const Image& receivers, const PcfOp
     check(kPcfRadiusRange, o.radius, op);
     PcfParams p{};
     p.radius = o.radius;
-    detail::family_lookup<detail::KernelId::pcf>(context, op, map, receivers, o.bias, p, out);
+    detail::family_lookup<detail::KernelId::pcf>(context, op, map, receivers, o.bias, o.depth_convention, p,
+                                                       out);
 }
 
 void pcf_gauss(Context& context, const Image& map, const Image& receivers, const PcfGaussOptions& o, Image& out)
@@ -73,7 +74,8 @@ void pcf_gauss(Context& context, const Image& map, const Image& receivers, const
     PcfParams p{};
     p.grid = o.grid;
     p.sigma = o.sigma;
-    detail::family_lookup<detail::KernelId::pcf_gauss>(context, op, map, receivers, o.bias, p, out);
+    detail::family_lookup<detail::KernelId::pcf_gauss>(context, op, map, receivers, o.bias, o.depth_convention, p,
+                                                       out);
 }
 
 void pcf_disc(Context& context, const Image& map, const Image& receivers, const PcfDiscOptions& o, Image& out)
@@ -85,7 +87,8 @@ void pcf_disc(Context& context, const Image& map, const Image& receivers, const 
     p.taps = o.taps;
     p.disc_radius = o.radius;
     p.rotate = o.rotate ? 1 : 0;
-    detail::family_lookup<detail::KernelId::pcf_disc>(context, op, map, receivers, o.bias, p, out);
+    detail::family_lookup<detail::KernelId::pcf_disc>(context, op, map, receivers, o.bias, o.depth_convention, p,
+                                                       out);
 }
 
 }  // namespace penumbra

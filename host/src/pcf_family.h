@@ -7,6 +7,7 @@
 #include <string>
 
 #include "checked_lookup.h"
+#include "depth_conversion.h"
 #include "host/backend/backend.h"
 #include "kernels/params.h"
 #include "penumbra/error.h"
@@ -29,15 +30,16 @@ inline bool reads_derivatives(const DepthBias& b) { return b.mode != BiasMode::C
 void check_family_bias(const DepthBias& b, const std::string& op);
 void check_family_receivers(const Image& receivers, const DepthBias& b, const std::string& op);
 
-// Checks the map, the bias, the receivers and `out` (1 channel, the
+// Checks the map (in `convention`, which the map and the receivers' z are
+// stored in), the bias, the receivers and `out` (1 channel, the
 // receivers' size); prepares the receivers (their derivative planes when the
 // bias mode reads them, pcf_receivers; the constant bias reads u, v, z only,
 // so no copy) and runs K with Params p (PcfParams or SoftPcfParams) into out.
 template <KernelId K, class Params>
 void family_lookup(Context& context, const std::string& op, const Image& map, const Image& receivers,
-                   const DepthBias& bias, Params p, Image& out)
+                   const DepthBias& bias, const DepthConvention& convention, Params p, Image& out)
 {
-    check_shadow_map(map, op);
+    check_shadow_map(map, op, convention);
     check_family_bias(bias, op);
     check_family_receivers(receivers, bias, op);
     require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), op,
@@ -49,6 +51,7 @@ void family_lookup(Context& context, const std::string& op, const Image& map, co
     p.receivers = dims_of(prepared);
     p.out = dims_of(out);
     p.bias = kernel_bias(bias);
+    p.convention = kernel_conversion(convention);
     checked_lookup(op, prepared, [&](int* bad_rows) {
         receiver_lookup<K>(context.impl(), map, prepared, p, out, bad_rows);
     });

@@ -58,15 +58,16 @@ void throw_wrong_arrays(KernelId kernel, std::size_t wanted, std::size_t given)
                     "; pass the map its entry names");
 }
 
-// The map is scanned for values outside [0, 1] up front: the kernels do not
-// flag them (a NaN depth would silently count as neither blocker nor lit in
-// a percentage-closer test, and the direct sums clamp it).
-void check_shadow_map(const Image& map, const std::string& op)
+// The map is scanned for values outside its convention's range up front: the
+// kernels do not flag them (a NaN depth would silently count as neither
+// blocker nor lit in a percentage-closer test, and the direct sums clamp it).
+void check_shadow_map(const Image& map, const std::string& op, const DepthConvention& convention)
 {
     require(!map.empty(), op, "depth", "the shadow map is empty (0 texels)");
     require(map.channels() == 1, op, "depth",
             "the shadow map must have one channel (depth), got " + std::to_string(map.channels()));
-    require_unit_depths(map, op);
+    check_depth_convention(convention, op);
+    require_depths_in(map, convention, op);
 }
 
 void throw_not_a_lookup(KernelId kernel)

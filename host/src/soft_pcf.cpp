@@ -34,7 +34,8 @@ void pcss(Context& context, const Image& map, const Image& receivers, const Pcss
     p.blocker_samples = options.blocker_samples;
     p.filter_samples = options.filter_samples;
     p.light_size = options.light_size;
-    detail::family_lookup<detail::KernelId::pcss>(context, op, map, receivers, options.bias, p, out);
+    detail::family_lookup<detail::KernelId::pcss>(context, op, map, receivers, options.bias,
+                                                 options.depth_convention, p, out);
 }
 
 void burley(Context& context, const Image& map, const Image& receivers, const BurleyOptions& options, Image& out)
@@ -57,7 +58,8 @@ void burley(Context& context, const Image& map, const Image& receivers, const Bu
     p.bias_slope = options.bias_slope;
     p.bias_slope_per_depth = options.bias_slope_per_depth;
     p.falloff = options.falloff;
-    detail::family_lookup<detail::KernelId::burley>(context, op, map, receivers, options.bias, p, out);
+    detail::family_lookup<detail::KernelId::burley>(context, op, map, receivers, options.bias,
+                                                 options.depth_convention, p, out);
 }
 
 BurleyOptions world_cone(BurleyOptions options, float world_slope, const LightFrustum& light)

@@ -87,7 +87,7 @@ static int same_floats(const float* a, const float* b, int n)
 
 struct MethodCase {
     const char* name;
-    const char* options[2][2]; /* name, value */
+    const char* options[3][2]; /* name, value */
     size_t count;
 };
 
@@ -97,13 +97,16 @@ static const struct MethodCase kMethods[] = {
     {"pcf", {{"radius", "1"}, {"depth-bias", "0.002"}}, 2},
     {"pcss", {{"light-size", "0.05"}}, 1},
     {"evsm4", {{"radius", "2"}}, 1},
+    /* The depth convention reaches the method table too (the map's values in [0, 1] are perspective depths). */
+    {"pcf", {{"depth-convention", "perspective"}, {"near", "0.5"}, {"far", "50"}}, 3},
+    {"vsm", {{"depth-convention", "reversed"}, {"near", "1"}, {"far", "20"}}, 3},
 };
 
 static void shade_matches_cpp(const char* backend_name, penumbra_context* context, const struct MethodCase* m,
                               const float* map_values, penumbra_image_view map_in)
 {
-    const char* names[2] = {m->options[0][0], m->options[1][0]};
-    const char* values[2] = {m->options[0][1], m->options[1][1]};
+    const char* names[3] = {m->options[0][0], m->options[1][0], m->options[2][0]};
+    const char* values[3] = {m->options[0][1], m->options[1][1], m->options[2][1]};
     penumbra_method* method = NULL;
     penumbra_status s = penumbra_method_create(m->name, names, values, m->count, &method);
     CHECK(s == PENUMBRA_OK, "%s: method_create: %s", m->name, penumbra_last_error());
@@ -227,6 +230,10 @@ static void bad_input(penumbra_context* context)
     CHECK(method == NULL, "a failed method_create leaves the handle NULL");
     expect_failure(penumbra_method_create("vsm", radius, minus_one, 1, &method), PENUMBRA_INVALID_ARGUMENT, "radius",
                    "radius", "a radius of -1");
+    const char* convention[3] = {"depth-convention", "near", "far"};
+    const char* zero_near[3] = {"perspective", "0", "10"};
+    expect_failure(penumbra_method_create("pcf", convention, zero_near, 3, &method), PENUMBRA_INVALID_ARGUMENT, "near",
+                   "near > 0", "a perspective depth with near 0");
     penumbra_context* none = NULL;
     expect_failure(penumbra_context_create((penumbra_backend)42, &none), PENUMBRA_INVALID_ARGUMENT, "backend", "42",
                    "an unknown backend");

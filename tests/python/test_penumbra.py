@@ -141,3 +141,26 @@ def test_errors_name_the_parameter(context):
     with pytest.raises(penumbra.Error) as e:
         penumbra.shade(context, "pcf", depth, receivers, out=np.empty((3, 3), np.float32))
     assert "receivers" in str(e.value)
+
+
+def perspective(l, near, far):
+    """D3D/Vulkan [0, 1] depth of normalised linear depth l, in float64 (penumbra/depth_convention.h)."""
+    d = near + l.astype(np.float64) * (far - near)
+    return (far * (d - near) / (d * (far - near))).astype(np.float32)
+
+
+@pytest.mark.parametrize("method", ["pcf", "vsm"])
+def test_depth_convention_keywords_reach_the_method_table(context, method):
+    """A map and receivers in reversed Z (1 - perspective), near 0.5, far 50, shade as the normalised ones:
+    the dyadic depths keep every comparison 1/32 from its decision, far above the storage's error (6e-6)."""
+    depth = dyadic_map(9, 13, seed=5)
+    receivers = texel_receivers(5, 17, 9, 13, seed=6)
+    stored = receivers.copy()
+    stored[2] = 1.0 - perspective(receivers[2], 0.5, 50.0)
+    expected = penumbra.shade(context, method, depth, receivers)
+    got = penumbra.shade(context, method, 1.0 - perspective(depth, 0.5, 50.0), stored,
+                         depth_convention="reversed", near=0.5, far=50)
+    np.testing.assert_allclose(got, expected, atol=1e-4)
+    with pytest.raises(penumbra.Error) as error:
+        penumbra.shade(context, method, depth, receivers, depth_convention="perspective", near=0, far=50)
+    assert error.value.parameter == "near"

@@ -21,12 +21,16 @@ struct VsmOptions {
     int radius = 2;                       // texels; window (2r+1)^2
     float min_variance = kDefaultMinVariance;
     float bleed = 0.0f;                   // light-bleeding reduction in [0, 1); 0 = off
+    // The receivers' z (and the direct form's map): a table's convention
+    // (build_moment_table) must equal it (penumbra/depth_convention.h).
+    DepthConvention depth_convention{};
 };
 
 struct VssmOptions {
     float light_size = 0.02f;             // texture units: the blocker search's width, and L in w = L (z - z_b) / z_b (> 0; docs/reference.md)
     float min_variance = kDefaultMinVariance;
     float bleed = 0.0f;
+    DepthConvention depth_convention{};   // as VsmOptions'
 };
 
 Image vsm(Context& context, const MomentTable& table, const Image& receivers, const VsmOptions& options);

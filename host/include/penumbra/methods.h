@@ -24,6 +24,7 @@
 #include "penumbra/context.h"
 #include "penumbra/deep_lookup.h"
 #include "penumbra/deep_shadow_map.h"
+#include "penumbra/depth_convention.h"
 #include "penumbra/image.h"
 #include "penumbra/image_view.h"
 #include "penumbra/moments.h"
@@ -69,6 +70,9 @@ struct MethodSettings {
     DeepSearch deep_search = DeepLookupOptions{}.search;
     // Pismo (penumbra/pismo.h): rays per shading point.
     int rays = PismoOptions{}.rays;
+    // How a shadow map's depths and the receivers' z are stored (the methods
+    // that read a shadow map; penumbra/depth_convention.h).
+    DepthConvention depth_convention{};
 };
 
 // What a method's build step reads: a shadow map (one channel of depth in

@@ -16,6 +16,7 @@
 #include <cstdint>
 
 #include "penumbra/context.h"
+#include "penumbra/depth_convention.h"
 #include "penumbra/image.h"
 
 namespace penumbra {
@@ -30,10 +31,12 @@ inline constexpr int kVsmLimbs = 2;
 inline constexpr int kMomentLimbs = 3;
 
 // What a table's values are (kernels/params.h, PN_TABLE_*): the powers z^k,
-// or EVSM's warps with these exponents.
+// or EVSM's warps with these exponents, of the normalised depth z, which
+// the build converts from the map's convention `depth` where it loads a texel.
 struct TableValues {
     int kind = 0;  // PN_TABLE_POWERS (0) or PN_TABLE_EVSM (1)
     float positive = 0.0f, negative = 0.0f;
+    DepthConvention depth{};
 };
 
 // Where a table of this shape keeps its elements (4 bytes each): what a
@@ -98,9 +101,10 @@ private:
 };
 
 // Builds the table. Throws Error for an empty map, a map with more than one
-// channel, non-finite depths or depths outside [0, 1], moments not 2 or 4.
+// channel, non-finite depths or depths outside the convention's range ([0, 1]
+// by default), a bad convention, moments not 2 or 4.
 MomentTable build_moment_table(Context& context, const Image& depth, int moments = 2,
-                               Precision precision = Precision::Exact);
+                               Precision precision = Precision::Exact, const DepthConvention& convention = {});
 
 // The same into an existing table of the map's size (its moments and
 // precision are kept): no allocation, for per-frame use. If it throws (a bad

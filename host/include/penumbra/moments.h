@@ -78,13 +78,16 @@ struct MsmTable {
 // Throws Error for an empty or multi-channel map, depths outside [0, 1] or
 // non-finite, and Bits32 with Precision::Exact (an exact table holds 16-bit
 // values).
+// `convention`: the map's depths (penumbra/depth_convention.h); the table
+// records it, and its lookups take receivers in the same one.
 MsmTable build_msm_table(Context& context, const Image& depth, Quantization quantization = Quantization::None,
-                         Precision precision = Precision::Exact);
+                         Precision precision = Precision::Exact, const DepthConvention& convention = {});
 
 struct MsmOptions {
     int radius = 2;                     // box (2r+1)^2 texels; exact tables: r <= 127
     std::optional<float> moment_bias{}; // alpha in [0, 1); unset: default_moment_bias()
     std::optional<float> depth_bias{};  // >= 0 and < 1; unset: default_depth_bias()
+    DepthConvention depth_convention{}; // the receivers' z; a table's must equal it
 };
 
 struct MsmSoftOptions {
@@ -103,6 +106,7 @@ struct MsmSoftOptions {
     float plane_bias = 0.0f;            // in [0, 16]
     float plane_bias_max = 0.02f;       // in [0, 1], depth units
     DerivativeSource derivatives = DerivativeSource::FiniteDifferences;
+    DepthConvention depth_convention{}; // the receivers' z (and their dzdu, dzdv); the table's must equal it
 };
 
 Image msm(Context& context, const MsmTable& table, const Image& receivers, const MsmOptions& options = {});
@@ -160,13 +164,14 @@ struct EvsmTable {
 };
 
 EvsmTable build_evsm_table(Context& context, const Image& depth, const EvsmWarp& warp = {},
-                           Precision precision = Precision::Exact);
+                           Precision precision = Precision::Exact, const DepthConvention& convention = {});
 
 struct EvsmOptions {
     int radius = 2;
     float min_variance = 2e-5f;         // depth^2 (as VSM's), scaled by the warp's slope; >= 0
     float bleed = 0.0f;                 // light-bleeding reduction in [0, 1)
     float depth_bias = 0.0f;            // >= 0 and < 1
+    DepthConvention depth_convention{}; // the receivers' z; a table's must equal it
 };
 
 Image evsm(Context& context, const EvsmTable& table, const Image& receivers, const EvsmOptions& options = {});

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "penumbra/context.h"
+#include "penumbra/depth_convention.h"
 #include "penumbra/image.h"
 
 namespace penumbra {
@@ -38,12 +39,16 @@ struct DepthBias {
 struct PcfOptions {
     int radius = 2;  // window (2 radius + 1)^2 texels
     DepthBias bias{};
+    // How the map and the receivers' z are stored (penumbra/depth_convention.h);
+    // the bias stays in normalised depth.
+    DepthConvention depth_convention{};
 };
 
 struct PcfGaussOptions {
     int grid = 4;        // taps per side (4: Toy Story 3's 4x4); 1 .. kPcfMaxGrid
     float sigma = 1.0f;  // the Gaussian's standard deviation in texels
     DepthBias bias{};
+    DepthConvention depth_convention{};  // as PcfOptions'
 };
 
 struct PcfDiscOptions {
@@ -51,6 +56,7 @@ struct PcfDiscOptions {
     float radius = 2.5f;  // the disc's radius in texels
     bool rotate = true;   // rotate per receiver from a 4x4 tile (Toy Story 3)
     DepthBias bias{};
+    DepthConvention depth_convention{};  // as PcfOptions'
 };
 
 inline constexpr int kPcfMaxGrid = 16;   // kernels/params.h, PN_PCF_MAX_GRID

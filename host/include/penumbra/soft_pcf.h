@@ -43,6 +43,7 @@ struct PcssOptions {
     int filter_samples = 24;
     // The family's bias (penumbra/pcf.h): a tap is lit where its depth >= z - beta.
     DepthBias bias{BiasMode::Constant, 5e-4f};
+    DepthConvention depth_convention{};  // as PcfOptions' (penumbra/pcf.h)
 };
 
 // Named sample counts, as `--preset` (blocker / filter taps): the counts the
@@ -66,6 +67,7 @@ struct BurleyOptions {
     int filter_samples = 24;
     // The family's bias at the cone's tip (Burley's base bias: 0 or near it).
     DepthBias bias{BiasMode::Constant, 0.0f};
+    DepthConvention depth_convention{};  // as PcfOptions' (penumbra/pcf.h)
 };
 
 // The light's frustum as the cone needs it: the world width the whole map

@@ -1,0 +1,123 @@
+// What each depth convention costs against normalised depth
+// (kernels/depth_convention.h: the conversion in the kernels' load), on
+// penumbra_bench's inputs (bench_inputs.h) rewritten in each convention
+// (near 0.5, far 50), on the best CPU backend, one thread:
+//
+//   table      the exact VSM table's build (one conversion per texel)
+//   vsm        VSM r = 2 on that table (one per receiver: its z)
+//   msm_direct MSM r = 1 summed from the map (9 per receiver: each tap)
+//   pcf        PCF r = 2 (25 per receiver: each tap)
+//
+// The operations as a user calls them (their map checks included), into
+// outputs allocated once. docs/integration.md ("Depth conventions") has the
+// command and the ratios.
+#include <benchmark/benchmark.h>
+#include <tbb/task_arena.h>
+
+#include <exception>
+#include <map>
+#include <string>
+
+#include "bench_inputs.h"
+#include "penumbra/chebyshev.h"
+#include "penumbra/moments.h"
+#include "penumbra/pcf.h"
+#include "support/depth_conventions.h"
+
+namespace penumbra::bench {
+namespace {
+
+constexpr int kSize = 2048;
+
+struct Inputs {
+    Image map, receivers;
+    MomentTable table;
+};
+
+// The inputs in convention `kind`, made once (untimed).
+Inputs& inputs(DepthConventionKind kind)
+{
+    static std::map<DepthConventionKind, Inputs> cache;
+    auto found = cache.find(kind);
+    if (found != cache.end()) return found->second;
+    const DepthConvention c = testing::convention_of(kind);
+    Inputs in{testing::in_convention(depth_map(kSize), 0, c), testing::in_convention(receivers(kSize), 2, c), {}};
+    in.table = MomentTable(kSize, kSize, 2, Precision::Exact, kVsmLimbs, TableValues{0, 0.0f, 0.0f, c});
+    return cache.emplace(kind, std::move(in)).first->second;
+}
+
+using Step = void (*)(Context&, Inputs&, const DepthConvention&, Image&);
+
+void table_step(Context& ctx, Inputs& in, const DepthConvention&, Image&)
+{
+    build_moment_table(ctx, in.map, in.table);
+}
+
+void vsm_step(Context& ctx, Inputs& in, const DepthConvention& c, Image& out)
+{
+    VsmOptions o;
+    o.radius = 2;
+    o.depth_convention = c;
+    vsm(ctx, in.table, in.receivers, o, out);
+}
+
+void msm_direct_step(Context& ctx, Inputs& in, const DepthConvention& c, Image& out)
+{
+    MsmOptions o;
+    o.radius = 1;
+    o.depth_convention = c;
+    msm(ctx, in.map, in.receivers, o, out);
+}
+
+void pcf_step(Context& ctx, Inputs& in, const DepthConvention& c, Image& out)
+{
+    PcfOptions o;
+    o.radius = 2;
+    o.depth_convention = c;
+    pcf(ctx, in.map, in.receivers, o, out);
+}
+
+struct Case {
+    const char* name;
+    Step step;
+};
+const Case kCases[] = {{"table", table_step}, {"vsm", vsm_step}, {"msm_direct", msm_direct_step}, {"pcf", pcf_step}};
+
+void run(benchmark::State& state, const Case& c, DepthConventionKind kind)
+{
+    tbb::task_arena arena(1);
+    arena.execute([&] {
+        try {
+            Context& ctx = context(best_cpu_backend());
+            state.SetLabel(ctx.description());
+            Inputs& in = inputs(kind);
+            const DepthConvention convention = testing::convention_of(kind);
+            Image out(kSize, kSize, 1);
+            table_step(ctx, in, convention, out);  // untimed: the lookups' table, first touch
+            c.step(ctx, in, convention, out);
+            for (auto _ : state) {
+                c.step(ctx, in, convention, out);
+                benchmark::DoNotOptimize(out.plane(0));
+            }
+            state.counters["pixels/s"] =
+                benchmark::Counter(double(state.iterations()) * kSize * kSize, benchmark::Counter::kIsRate);
+        } catch (const std::exception& e) {
+            state.SkipWithError(e.what());
+        }
+    });
+}
+
+[[maybe_unused]] const bool registered = [] {
+    for (const Case& c : kCases)
+        for (DepthConventionKind kind : testing::kAllConventions) {
+            const std::string name = std::string("depth_convention/") + c.name + "/convention:" + to_string(kind) +
+                                     "/size:" + std::to_string(kSize);
+            benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) { run(s, c, kind); })
+                ->UseRealTime()
+                ->Unit(benchmark::kMillisecond);
+        }
+    return true;
+}();
+
+}  // namespace
+}  // namespace penumbra::bench

@@ -1,0 +1,110 @@
+/* Depth conventions: how a shadow map's texels and the receivers' z are
+ * stored, and their conversion to the normalised linear depth every method
+ * computes with, l = (d - near) / (far - near) in [0, 1] for a distance d from
+ * the light along its axis (docs/integration.md, "Depth conventions").
+ *
+ *   PN_DEPTH_NORMALIZED  l itself (the library's contract before conventions):
+ *                        returned as stored, bit for bit, no clamp.
+ *   PN_DEPTH_LINEAR      the distance d in [near, far]:  l = (d - near) / (far - near).
+ *   PN_DEPTH_PERSPECTIVE the hyperbolic depth a D3D / Vulkan projection matrix
+ *                        writes into a [0, 1] depth buffer,
+ *                            z = far (d - near) / (d (far - near)),
+ *                        so that, with k = (far - near) / near,
+ *                            l = z / (1 + k (1 - z)).
+ *                        (Solve z for d: d = near far / (far - z (far - near));
+ *                        then d - near = near z (far - near) / (far - z (far - near))
+ *                        and far - z (far - near) = near (1 + k (1 - z)).)
+ *   PN_DEPTH_REVERSED    reversed Z as D3D / Vulkan write it, z_r = 1 - z:
+ *                            l = (1 - z_r) / (1 + k z_r).
+ *
+ * Both rational forms add positive terms only (no cancellation): l has a few
+ * float roundings of relative error; what the convention itself loses is its
+ * float32 storage (perspective depth crowds the far range into the last ulps
+ * below 1), measured in tests/kernels/depth_convention_test.cpp.
+ *
+ * A stored value is first clamped into the convention's stored range [low,
+ * high] ([0, 1], or [near, far] for linear; values outside it are refused by
+ * the host or flagged by the kernels, depth_outside), so that no denominator
+ * vanishes, and l into [0, 1] (a rounding above 1 is not a depth). Receivers'
+ * z is converted by the same function: a receiver beyond the far plane
+ * compares as at the far plane.
+ *
+ * dl/dz, for a receiver plane's slopes dz/du given in the stored convention
+ * (chain rule), written in l so that the caller needs no stored value:
+ *   linear 1 / (far - near); perspective (1 + k l)^2 / (1 + k); reversed -(1 + k l)^2 / (1 + k).
+ * (From l = z / (1 + k (1 - z)): z = l (1 + k) / (1 + k l), and dl/dz =
+ * (1 + k) / (1 + k (1 - z))^2 with 1 + k (1 - z) = (1 + k) / (1 + k l).)
+ */
+#ifndef PENUMBRA_DEPTH_CONVENTION_H
+#define PENUMBRA_DEPTH_CONVENTION_H
+
+/* Stored depths the conventions refuse: outside [low, high] (normalised:
+ * [0, 1], so that a zeroed DepthConversion is today's contract), NaN and
+ * infinities included. */
+PN_FN pn_mask depth_outside(pn_float z, DepthConversion c)
+{
+    const float low = c.kind == PN_DEPTH_NORMALIZED ? 0.0f : c.low;
+    const float high = c.kind == PN_DEPTH_NORMALIZED ? 1.0f : c.high;
+    return pn_not(pn_and(z >= low, z <= high));
+}
+
+/* The normalised linear depth of a stored value (top of this file). */
+PN_FN pn_float depth_to_normalized(pn_float stored, DepthConversion c)
+{
+    if (c.kind == PN_DEPTH_NORMALIZED) return stored;
+    const pn_float z = pn_clamp(stored, c.low, c.high);
+    if (c.kind == PN_DEPTH_LINEAR) return pn_clamp((z - c.low) * c.scale, 0.0f, 1.0f);
+    const pn_float far_side = c.kind == PN_DEPTH_PERSPECTIVE ? z : 1.0f - z;  /* grows with d */
+    const pn_float near_side = c.kind == PN_DEPTH_PERSPECTIVE ? 1.0f - z : z; /* shrinks with d */
+    return pn_min(far_side / (1.0f + c.scale * near_side), 1.0f);
+}
+
+/* dl/dz at normalised depth l (top of this file): scales a receiver plane's
+ * slopes from the stored convention's units into l's. */
+PN_FN pn_float depth_slope_factor(pn_float l, DepthConversion c)
+{
+    if (c.kind == PN_DEPTH_NORMALIZED) return 1.0f;
+    if (c.kind == PN_DEPTH_LINEAR) return c.scale;
+    const pn_float grow = 1.0f + c.scale * l;
+    const pn_float factor = grow * grow / (1.0f + c.scale);
+    return c.kind == PN_DEPTH_PERSPECTIVE ? factor : -factor;
+}
+
+/* The stored value of normalised depth l, clamped into [0, 1] (the inverse
+ * of depth_to_normalized): linear near + l (far - near); perspective
+ * l (1 + k) / (1 + k l); reversed (1 - l) / (1 + k l). */
+PN_FN pn_float depth_from_normalized(pn_float l, DepthConversion c)
+{
+    if (c.kind == PN_DEPTH_NORMALIZED) return l;
+    const pn_float t = pn_clamp(l, 0.0f, 1.0f);
+    if (c.kind == PN_DEPTH_LINEAR) return c.low + t * (c.high - c.low);
+    const pn_float grow = 1.0f + c.scale * t;
+    return c.kind == PN_DEPTH_PERSPECTIVE ? t * (1.0f + c.scale) / grow : (1.0f - t) / grow;
+}
+
+/* A comparison "normalised depth >= reference" moved into the stored
+ * convention once per receiver, so that the taps are compared as stored
+ * (every conversion is monotonic: increasing, or decreasing for reversed
+ * Z, where the comparison turns): depth_lit(stored, depth_threshold(ref)).
+ * A reference below 0 is met by every stored depth, one beyond 1 by none. */
+PN_FN pn_float depth_threshold(pn_float reference, DepthConversion c)
+{
+    if (c.kind == PN_DEPTH_NORMALIZED) return reference;
+    const float beyond = c.kind == PN_DEPTH_REVERSED ? -3.0e38f : 3.0e38f;
+    return pn_select(reference <= 1.0f, depth_from_normalized(reference, c), beyond);
+}
+
+/* 1 where a stored depth meets a threshold of depth_threshold, else 0. */
+PN_FN pn_float depth_lit(pn_float stored, pn_float threshold, DepthConversion c)
+{
+    const pn_mask lit = c.kind == PN_DEPTH_REVERSED ? stored <= threshold : stored >= threshold;
+    return pn_select(lit, 1.0f, 0.0f);
+}
+
+/* A shadow map's texel (x, y), clamped to the map, as normalised depth. */
+PN_FN pn_float depth_fetch(PN_GLOBAL const float* depth, pn_dims map, pn_int x, pn_int y, DepthConversion c)
+{
+    return depth_to_normalized(pn_fetch(depth, map, x, y), c);
+}
+
+#endif
