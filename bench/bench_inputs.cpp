@@ -1,9 +1,12 @@
 #include "bench_inputs.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <map>
 #include <new>
+#include <numeric>
+#include <random>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -51,6 +54,21 @@ Image make_receivers(int size)
     return r;
 }
 
+Image shuffle_pixels(const Image& in)
+{
+    const std::size_t n = std::size_t(in.width()) * std::size_t(in.height());
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::shuffle(order.begin(), order.end(), std::mt19937_64(20261204));
+    Image out(in.width(), in.height(), in.channels());
+    for (std::size_t i = 0; i < n; ++i) {
+        const int x = int(i % std::size_t(in.width())), y = int(i / std::size_t(in.width()));
+        const int sx = int(order[i] % std::size_t(in.width())), sy = int(order[i] / std::size_t(in.width()));
+        for (int c = 0; c < in.channels(); ++c) out.at(c, x, y) = in.at(c, sx, sy);
+    }
+    return out;
+}
+
 template <class T, class Make>
 const T& cached(std::map<int, T>& cache, int key, Make&& make)
 {
@@ -71,6 +89,12 @@ const Image& receivers(int size)
 {
     static std::map<int, Image> cache;
     return cached(cache, size, [&] { return make_receivers(size); });
+}
+
+const Image& shuffled_receivers(int size)
+{
+    static std::map<int, Image> cache;
+    return cached(cache, size, [&] { return shuffle_pixels(receivers(size)); });
 }
 
 std::string best_cpu_backend()

@@ -27,6 +27,9 @@ constexpr std::size_t table_bytes_per_texel(int planes) { return 4 + 4 * std::si
 
 const Image& depth_map(int size);   // size x size, 1 channel
 const Image& receivers(int size);   // size x size, 3 channels (u, v, z)
+// The same receivers in a fixed random order (a permutation of the pixels):
+// neighbouring lanes read unrelated windows.
+const Image& shuffled_receivers(int size);
 // The best CPU backend here, by name: the last (best) ISA of supported_isas()
 // (simd/cpu_kernels.h: built and run by this CPU), or "scalar" where there is
 // none. The tables every backend's lookups read are built with it.

@@ -196,50 +196,69 @@ void register_table(const std::string& backend, const std::vector<int>& sizes, c
 }
 
 // 3. vsm() (radius 8) and vssm() (default light size): receivers of the map's
-// size at the texel centres over a table built beforehand. `vsm_r8_into` is the
-// overload that writes an existing output image (no allocation per call);
-// VSSM's output allocation is 5 to 12% of its time (VSM: 30%), so it has no such case.
+// size at the texel centres over a table built beforehand. `vsm_r8` and `vssm`
+// return a new image (its allocation and first touch timed: 15% of VSSM's
+// time on Zen 5, 30% of VSM's); `vsm_r8_into` and `vssm_into` write an output
+// image allocated once, the per-frame overloads, so that the two methods are
+// measured alike. `*_shuffled`: the same receivers in a random order (into an
+// output allocated once), so that neighbouring lanes read unrelated windows:
+// the incoherent case, which a gather cannot read as one contiguous run.
 // vsm_r0 .. vsm_r2 (exact only): the small windows, which issue 9 requires to be
 // no slower than before it (their radius is the digit after "vsm_r"), on the
 // exact table and summed directly from the map (`precision:map`, no table:
 // what `penumbra shade` runs at these radii, docs/moment_table.md).
+struct LookupCase {
+    std::string op;
+    bool vssm, into, shuffled;
+    int radius;  // vsm's
+};
+LookupCase lookup_case(const std::string& op)
+{
+    const bool vssm = op.compare(0, 4, "vssm") == 0;
+    const bool shuffled = op.find("_shuffled") != std::string::npos;
+    const bool into = shuffled || op.find("_into") != std::string::npos;
+    return {op, vssm, into, shuffled, vssm ? 0 : op[5] - '0'};
+}
+
 void register_lookups(const std::string& backend, const std::vector<int>& sizes, const std::vector<int>& threads_list)
 {
-    for (const std::string op : {"vsm_r0", "vsm_r1", "vsm_r2", "vsm_r8", "vsm_r8_into", "vssm"})
+    for (const std::string op : {"vsm_r0", "vsm_r1", "vsm_r2", "vsm_r8", "vsm_r8_into", "vsm_r8_shuffled", "vssm",
+                                 "vssm_into", "vssm_shuffled"})
         for (int source : {0, 1, 2})  // float table, exact table, the map
             for (int size : sizes)
                 for (int threads : threads_list) {
-                    const bool small = op.size() == 6 && op.compare(0, 5, "vsm_r") == 0 && op != "vsm_r8";
+                    const LookupCase c = lookup_case(op);
+                    const bool small = !c.vssm && c.radius < kVsmRadius;
                     const bool direct = source == 2;
                     const Precision precision = source == 0 ? Precision::Float : Precision::Exact;
                     if ((small && precision == Precision::Float) || (direct && !small)) continue;
-                    const int radius = op.compare(0, 5, "vsm_r") == 0 ? op[5] - '0' : kVsmRadius;
                     const std::string name = op + "/backend:" + backend + "/precision:" +
                                              (direct ? "map" : precision_name(precision)) + suffix(size, threads);
                     auto fn = [=](benchmark::State& state) {
                         Context* ctx = context_or_skip(state, backend);
                         if (!ctx) return;
-                        const Image& rx = receivers(size);
+                        const Image& rx = c.shuffled ? shuffled_receivers(size) : receivers(size);
                         if (direct) {
                             const Image& depth = depth_map(size);
                             run_case(state, name, threads, [&] {
-                                Image out = vsm(*ctx, depth, rx, VsmOptions{radius});
+                                Image out = vsm(*ctx, depth, rx, VsmOptions{c.radius});
                                 benchmark::DoNotOptimize(out.plane(0));
                             });
                             set_rates(state, double(size) * size, 0);
                             return;
                         }
                         const MomentTable& table = moment_table(size, precision);
-                        if (op == "vsm_r8_into") {
+                        if (c.into) {
                             Image out(size, size, 1);
                             run_case(state, name, threads, [&] {
-                                vsm(*ctx, table, rx, VsmOptions{kVsmRadius}, out);
+                                if (c.vssm) vssm(*ctx, table, rx, VssmOptions{}, out);
+                                else vsm(*ctx, table, rx, VsmOptions{c.radius}, out);
                                 benchmark::DoNotOptimize(out.plane(0));
                             });
                         } else {
                             run_case(state, name, threads, [&] {
-                                Image out = op == "vssm" ? vssm(*ctx, table, rx, VssmOptions{})
-                                                         : vsm(*ctx, table, rx, VsmOptions{radius});
+                                Image out = c.vssm ? vssm(*ctx, table, rx, VssmOptions{})
+                                                   : vsm(*ctx, table, rx, VsmOptions{c.radius});
                                 benchmark::DoNotOptimize(out.plane(0));
                             });
                         }

@@ -117,12 +117,19 @@ TEST(DialectDouble, ConversionsArithmeticAndMasksOnEveryCpuBinding)
     }
 }
 
+// 1000 elements spread over the whole uint32 range, all distinct.
+std::vector<cpu::u32> spread_table()
+{
+    std::vector<cpu::u32> table(1000);
+    for (std::size_t i = 0; i < table.size(); ++i) table[i] = cpu::u32(0x9E3779B9u * (i + 1));
+    return table;
+}
+
 // pn_ugather_pair (kernels/dialect.h) on every CPU binding: lane order across
 // the two 64-bit gathers of a strip, odd (not 8-byte aligned) indices.
 TEST(DialectGatherPair, AdjacentElementsPerLaneOnEveryCpuBinding)
 {
-    std::vector<cpu::u32> table(1000);
-    for (std::size_t i = 0; i < table.size(); ++i) table[i] = cpu::u32(0x9E3779B9u * (i + 1));
+    const std::vector<cpu::u32> table = spread_table();
     for (const std::string& isa : cpu_tables()) {
         const cpu::CpuKernels& t = cpu::kernels_for(isa);
         const int n = t.lanes;
@@ -137,13 +144,69 @@ TEST(DialectGatherPair, AdjacentElementsPerLaneOnEveryCpuBinding)
     }
 }
 
+// Index patterns that the SIMD gathers read by loads when the lanes form a
+// run of `step` (simd/dialect_simd.h, pn_lanes_in_run, pn_half_runs), and
+// their near misses, which must gather: a run over every lane from an odd
+// (not 8-byte aligned) start, a run in the first or the second half only, two
+// half runs that do not join, a run of the other step, and one lane off by one.
+std::vector<std::vector<int>> run_patterns(int lanes, int step)
+{
+    const int other = step == 1 ? 2 : 1;
+    std::vector<std::vector<int>> patterns(6, std::vector<int>(lanes));
+    for (int i = 0; i < lanes; ++i) {
+        patterns[0][i] = 11 + step * i;
+        patterns[1][i] = i < lanes / 2 ? 11 + step * i : 500 + 7 * i;
+        patterns[2][i] = i < lanes / 2 ? 300 - 5 * i : 11 + step * i;
+        patterns[3][i] = i < lanes / 2 ? 11 + step * i : 400 + step * i;
+        patterns[4][i] = 11 + other * i;
+        patterns[5][i] = 11 + step * i + (i == lanes - 1);
+    }
+    return patterns;
+}
+
+TEST(DialectGatherPair, RunsOfAdjacentIndicesReadTheSameElements)
+{
+    const std::vector<cpu::u32> table = spread_table();
+    for (const std::string& isa : cpu_tables()) {
+        const cpu::CpuKernels& t = cpu::kernels_for(isa);
+        const int n = t.lanes;
+        for (const std::vector<int>& index : run_patterns(n, 1)) {
+            std::vector<cpu::u32> first(n), second(n);
+            t.dialect_gather_pair_probe(table.data(), index.data(), first.data(), second.data());
+            for (int i = 0; i < n; ++i) {
+                EXPECT_EQ(first[i], table[index[i]]) << isa << " lane " << i << " from " << index[0];
+                EXPECT_EQ(second[i], table[index[i] + 1]) << isa << " lane " << i << " from " << index[0];
+            }
+        }
+    }
+}
+
+TEST(DialectUpair, RunsOfPairsReadTheSameElements)
+{
+    const std::vector<cpu::u32> table = spread_table();
+    for (const std::string& isa : cpu_tables()) {
+        const cpu::CpuKernels& t = cpu::kernels_for(isa);
+        const int n = t.lanes;
+        const std::vector<std::vector<int>> patterns = run_patterns(n, 2);
+        for (std::size_t p = 0; p < patterns.size(); ++p) {
+            const std::vector<int>& a = patterns[p];
+            const std::vector<int>& b = patterns[(p + 1) % patterns.size()];
+            std::vector<double> joined(n);
+            t.dialect_upair_probe(table.data(), a.data(), b.data(), joined.data());
+            for (int i = 0; i < n; ++i) {
+                const cpu::u32 first = table[a[i]] - table[b[i]], second = table[a[i] + 1] - table[b[i] + 1];
+                EXPECT_EQ(joined[i], double(first) * 65536.0 + double(second)) << isa << " lane " << i << " pattern " << p;
+            }
+        }
+    }
+}
+
 // pn_upair (kernels/dialect.h) on every CPU binding: both parts of a gathered
 // pair subtract on their own, wrapping (the table's values are spread over the
 // whole uint32 range), and join exactly as first 2^16 + second, lane by lane.
 TEST(DialectUpair, WrappingDifferencesJoinExactlyOnEveryCpuBinding)
 {
-    std::vector<cpu::u32> table(1000);
-    for (std::size_t i = 0; i < table.size(); ++i) table[i] = cpu::u32(0x9E3779B9u * (i + 1));
+    const std::vector<cpu::u32> table = spread_table();
     for (const std::string& isa : cpu_tables()) {
         const cpu::CpuKernels& t = cpu::kernels_for(isa);
         const int n = t.lanes;
