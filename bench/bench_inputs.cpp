@@ -41,14 +41,16 @@ Image make_depth_map(int size)
     return depth;
 }
 
-Image make_receivers(int size)
+// `step` texels of the map per receiver, about the map's centre: 1 puts one
+// receiver at every texel centre.
+Image make_receivers(int size, float step = 1.0f)
 {
     Image r(size, size, 3);
-    const float inv = 1.0f / float(size);
+    const float inv = 1.0f / float(size), start = 0.5f * (1.0f - step);
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
-            r.at(0, x, y) = (float(x) + 0.5f) * inv;  // texel centres
-            r.at(1, x, y) = (float(y) + 0.5f) * inv;
+            r.at(0, x, y) = start + step * (float(x) + 0.5f) * inv;
+            r.at(1, x, y) = start + step * (float(y) + 0.5f) * inv;
             r.at(2, x, y) = 0.5f + 0.1f * float(y) * inv;
         }
     return r;
@@ -95,6 +97,12 @@ const Image& shuffled_receivers(int size)
 {
     static std::map<int, Image> cache;
     return cached(cache, size, [&] { return shuffle_pixels(receivers(size)); });
+}
+
+const Image& magnified_receivers(int size)
+{
+    static std::map<int, Image> cache;
+    return cached(cache, size, [&] { return make_receivers(size, kMagnifiedStep); });
 }
 
 std::string best_cpu_backend()

@@ -30,6 +30,11 @@ const Image& receivers(int size);   // size x size, 3 channels (u, v, z)
 // The same receivers in a fixed random order (a permutation of the pixels):
 // neighbouring lanes read unrelated windows.
 const Image& shuffled_receivers(int size);
+// A raster denser than the map, as a renderer's screen often is near the
+// camera: kMagnifiedStep texels per receiver about the map's centre, so
+// neighbouring lanes read the same or the next window corners.
+constexpr float kMagnifiedStep = 0.6f;
+const Image& magnified_receivers(int size);
 // The best CPU backend here, by name: the last (best) ISA of supported_isas()
 // (simd/cpu_kernels.h: built and run by this CPU), or "scalar" where there is
 // none. The tables every backend's lookups read are built with it.

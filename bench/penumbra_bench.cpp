@@ -203,27 +203,32 @@ void register_table(const std::string& backend, const std::vector<int>& sizes, c
 // measured alike. `*_shuffled`: the same receivers in a random order (into an
 // output allocated once), so that neighbouring lanes read unrelated windows:
 // the incoherent case, which a gather cannot read as one contiguous run.
+// `*_magnified`: receivers 0.6 texel apart (bench_inputs.h), neighbouring
+// lanes' corners repeat or skip: a span, not a run.
 // vsm_r0 .. vsm_r2 (exact only): the small windows, which issue 9 requires to be
 // no slower than before it (their radius is the digit after "vsm_r"), on the
 // exact table and summed directly from the map (`precision:map`, no table:
 // what `penumbra shade` runs at these radii, docs/moment_table.md).
 struct LookupCase {
     std::string op;
-    bool vssm, into, shuffled;
+    bool vssm, into;
+    const Image& (*receivers)(int size);
     int radius;  // vsm's
 };
 LookupCase lookup_case(const std::string& op)
 {
     const bool vssm = op.compare(0, 4, "vssm") == 0;
     const bool shuffled = op.find("_shuffled") != std::string::npos;
-    const bool into = shuffled || op.find("_into") != std::string::npos;
-    return {op, vssm, into, shuffled, vssm ? 0 : op[5] - '0'};
+    const bool magnified = op.find("_magnified") != std::string::npos;
+    const bool into = shuffled || magnified || op.find("_into") != std::string::npos;
+    return {op, vssm, into, shuffled ? shuffled_receivers : magnified ? magnified_receivers : receivers,
+            vssm ? 0 : op[5] - '0'};
 }
 
 void register_lookups(const std::string& backend, const std::vector<int>& sizes, const std::vector<int>& threads_list)
 {
-    for (const std::string op : {"vsm_r0", "vsm_r1", "vsm_r2", "vsm_r8", "vsm_r8_into", "vsm_r8_shuffled", "vssm",
-                                 "vssm_into", "vssm_shuffled"})
+    for (const std::string op : {"vsm_r0", "vsm_r1", "vsm_r2", "vsm_r8", "vsm_r8_into", "vsm_r8_shuffled",
+                                 "vsm_r8_magnified", "vssm", "vssm_into", "vssm_shuffled", "vssm_magnified"})
         for (int source : {0, 1, 2})  // float table, exact table, the map
             for (int size : sizes)
                 for (int threads : threads_list) {
@@ -237,7 +242,7 @@ void register_lookups(const std::string& backend, const std::vector<int>& sizes,
                     auto fn = [=](benchmark::State& state) {
                         Context* ctx = context_or_skip(state, backend);
                         if (!ctx) return;
-                        const Image& rx = c.shuffled ? shuffled_receivers(size) : receivers(size);
+                        const Image& rx = c.receivers(size);
                         if (direct) {
                             const Image& depth = depth_map(size);
                             run_case(state, name, threads, [&] {

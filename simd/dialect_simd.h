@@ -307,45 +307,8 @@ PN_FN pn_float pn_gather(const float* ptr, pn_int index)
     return pn_float::load_aligned(values);
 #endif
 }
-// Table gathers whose lanes read one contiguous run. A strip of a raster's
-// receivers asks a summed-area table for the same corner of neighbouring
-// windows, so lane i's index is often lane 0's plus i steps; then one or two
-// unaligned loads read exactly the elements the gather would, in its lane
-// order (the same bits), and on Zen 5 a load is much cheaper than a gather
-// (measured: docs/moment_table.md, "Session 15"). The test is a broadcast,
-// an add and a compare; any other pattern gathers as before.
-template <int Step>
-struct pn_run_lane {
-    static constexpr std::int32_t get(unsigned i, unsigned) { return std::int32_t(i) * Step; }
-};
-template <int Step>
-PN_FN bool pn_lanes_in_run(pn_int index)
-{
-    const pn_int run = xsimd::make_batch_constant<pn_int, pn_run_lane<Step>>();
-#if defined(PN_ISA_avx512)
-    const __m512i first = _mm512_broadcastd_epi32(_mm512_castsi512_si128(index));
-    return _mm512_cmpneq_epi32_mask(index, _mm512_add_epi32(first, run)) == 0;
-#elif defined(PN_ISA_avx2)
-    const __m256i first = _mm256_broadcastd_epi32(_mm256_castsi256_si128(index));
-    return _mm256_movemask_epi8(_mm256_cmpeq_epi32(index, _mm256_add_epi32(first, run))) == -1;
-#else
-    const __m128i first = _mm_shuffle_epi32(index, 0);
-    return _mm_movemask_epi8(_mm_cmpeq_epi32(index, _mm_add_epi32(first, run))) == 0xFFFF;
-#endif
-}
-PN_FN const uint* pn_run_start(const uint* ptr, pn_int index)
-{
-#if defined(PN_ISA_avx512)
-    return ptr + _mm_cvtsi128_si32(_mm512_castsi512_si128(index));
-#elif defined(PN_ISA_avx2)
-    return ptr + _mm_cvtsi128_si32(_mm256_castsi256_si128(index));
-#else
-    return ptr + _mm_cvtsi128_si32(index);
-#endif
-}
 PN_FN pn_uint pn_ugather(const uint* ptr, pn_int index)
 {
-    if (pn_lanes_in_run<1>(index)) return pn_uint::load_unaligned(pn_run_start(ptr, index));
     return xsimd::bitwise_cast<pn_uint>(pn_gather(reinterpret_cast<const float*>(ptr), index));
 }
 // Two adjacent elements per lane, ptr[index] and ptr[index + 1]: one 64-bit
@@ -353,12 +316,6 @@ PN_FN pn_uint pn_ugather(const uint* ptr, pn_int index)
 // split by a permute.
 PN_FN void pn_ugather_pair(const uint* ptr, pn_int index, pn_uint* first, pn_uint* second)
 {
-    if (pn_lanes_in_run<1>(index)) {
-        const uint* run = pn_run_start(ptr, index);
-        *first = pn_uint::load_unaligned(run);
-        *second = pn_uint::load_unaligned(run + 1);
-        return;
-    }
 #if defined(PN_ISA_avx512)
     // The masked form with a zero source: GCC 12's unmasked one warns of an
     // uninitialised source vector.
@@ -397,56 +354,17 @@ struct pn_upair {
     pn_uint lo, hi;
 };
 PN_FN pn_upair operator-(pn_upair a, pn_upair b) { return {a.lo - b.lo, a.hi - b.hi}; }
-// Each half of a pair gather (the lanes of one 64-bit gather instruction) is
-// tested and loaded on its own: a window edge that jumps inside a strip then
-// costs one gather, not two (on VSSM's bench receivers 9% of the pair
-// gathers have a run in one half only, 87% in both).
-template <int Step>
-struct pn_half_run_lane {
-    static constexpr std::int32_t get(unsigned i, unsigned n) { return std::int32_t(i % (n / 2)) * Step; }
-};
-struct pn_half_first_lane {
-    static constexpr std::uint32_t get(unsigned i, unsigned n) { return i < n / 2 ? 0 : n / 2; }
-};
-#if defined(PN_ISA_avx512) || defined(PN_ISA_avx2)
-// Bit 0: lanes [0, N/2) step by 2 from lane 0's index; bit 1: lanes [N/2, N) from lane N/2's.
-PN_FN unsigned pn_half_runs(pn_int index)
-{
-    const pn_int step = xsimd::make_batch_constant<pn_int, pn_half_run_lane<2>>();
-    const pn_uint first = xsimd::make_batch_constant<pn_uint, pn_half_first_lane>();
-#if defined(PN_ISA_avx512)
-    const unsigned m = _mm512_cmpeq_epi32_mask(index, _mm512_add_epi32(_mm512_permutexvar_epi32(first, index), step));
-    return unsigned((m & 0xFFu) == 0xFFu) | (unsigned((m >> 8) == 0xFFu) << 1);
-#else
-    const __m256i run = _mm256_add_epi32(_mm256_permutevar8x32_epi32(index, first), step);
-    const unsigned m = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(index, run))));
-    return unsigned((m & 0xFu) == 0xFu) | (unsigned((m >> 4) == 0xFu) << 1);
-#endif
-}
-#endif
 PN_FN pn_upair pn_ugather_upair(const uint* ptr, pn_int index)
 {
 #if defined(PN_ISA_avx512)
-    const unsigned runs = pn_half_runs(index);
-    const __m256i lo = _mm512_castsi512_si256(index), hi = _mm512_extracti64x4_epi64(index, 1);
     const __m512i zero = _mm512_setzero_si512();  // as pn_ugather_pair: the masked form
-    return {runs & 1u ? _mm512_loadu_si512(ptr + _mm256_cvtsi256_si32(lo))
-                      : _mm512_mask_i32gather_epi64(zero, 0xFF, lo, ptr, 4),
-            runs & 2u ? _mm512_loadu_si512(ptr + _mm256_cvtsi256_si32(hi))
-                      : _mm512_mask_i32gather_epi64(zero, 0xFF, hi, ptr, 4)};
+    return {_mm512_mask_i32gather_epi64(zero, 0xFF, _mm512_castsi512_si256(index), ptr, 4),
+            _mm512_mask_i32gather_epi64(zero, 0xFF, _mm512_extracti64x4_epi64(index, 1), ptr, 4)};
 #elif defined(PN_ISA_avx2)
-    const unsigned runs = pn_half_runs(index);
-    const __m128i lo = _mm256_castsi256_si128(index), hi = _mm256_extracti128_si256(index, 1);
     const auto* base = reinterpret_cast<const long long*>(ptr);
-    return {runs & 1u ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ptr + _mm_cvtsi128_si32(lo)))
-                      : _mm256_i32gather_epi64(base, lo, 4),
-            runs & 2u ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ptr + _mm_cvtsi128_si32(hi)))
-                      : _mm256_i32gather_epi64(base, hi, 4)};
+    return {_mm256_i32gather_epi64(base, _mm256_castsi256_si128(index), 4),
+            _mm256_i32gather_epi64(base, _mm256_extracti128_si256(index, 1), 4)};
 #else
-    if (pn_lanes_in_run<2>(index)) {  // lane i's pair is elements 2i, 2i + 1 of the run
-        const uint* run = pn_run_start(ptr, index);
-        return {pn_uint::load_unaligned(run), pn_uint::load_unaligned(run + kLanes)};
-    }
     alignas(64) std::int32_t lanes[kLanes];
     alignas(64) uint pairs[2 * kLanes];
     index.store_aligned(lanes);

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -144,11 +145,12 @@ TEST(DialectGatherPair, AdjacentElementsPerLaneOnEveryCpuBinding)
     }
 }
 
-// Index patterns that the SIMD gathers read by loads when the lanes form a
-// run of `step` (simd/dialect_simd.h, pn_lanes_in_run, pn_half_runs), and
-// their near misses, which must gather: a run over every lane from an odd
-// (not 8-byte aligned) start, a run in the first or the second half only, two
-// half runs that do not join, a run of the other step, and one lane off by one.
+// Index patterns a coherent strip of receivers produces, and their near
+// misses: a run over every lane from an odd (not 8-byte aligned) start, a run
+// in the first or the second half only, two half runs that do not join, a
+// run of the other step, and one lane off by one. Session 15 read runs by
+// vector loads instead of gathers and then reverted it (docs/moment_table.md,
+// "Session 15"); the gathers must read these as any other indices.
 std::vector<std::vector<int>> run_patterns(int lanes, int step)
 {
     const int other = step == 1 ? 2 : 1;
@@ -181,16 +183,18 @@ TEST(DialectGatherPair, RunsOfAdjacentIndicesReadTheSameElements)
     }
 }
 
-TEST(DialectUpair, RunsOfPairsReadTheSameElements)
+// pn_ugather_upair through the probe on every CPU binding: pattern p's pairs
+// minus pattern (p + shift)'s, each part wrapping, joined exactly.
+void expect_upair_patterns(const std::function<std::vector<std::vector<int>>(int lanes)>& make, std::size_t shift)
 {
     const std::vector<cpu::u32> table = spread_table();
     for (const std::string& isa : cpu_tables()) {
         const cpu::CpuKernels& t = cpu::kernels_for(isa);
         const int n = t.lanes;
-        const std::vector<std::vector<int>> patterns = run_patterns(n, 2);
+        const std::vector<std::vector<int>> patterns = make(n);
         for (std::size_t p = 0; p < patterns.size(); ++p) {
             const std::vector<int>& a = patterns[p];
-            const std::vector<int>& b = patterns[(p + 1) % patterns.size()];
+            const std::vector<int>& b = patterns[(p + shift) % patterns.size()];
             std::vector<double> joined(n);
             t.dialect_upair_probe(table.data(), a.data(), b.data(), joined.data());
             for (int i = 0; i < n; ++i) {
@@ -199,6 +203,35 @@ TEST(DialectUpair, RunsOfPairsReadTheSameElements)
             }
         }
     }
+}
+
+TEST(DialectUpair, RunsOfPairsReadTheSameElements)
+{
+    expect_upair_patterns([](int lanes) { return run_patterns(lanes, 2); }, 1);
+}
+
+// Spans of a raster denser than the map (the session 15 attempt read them by
+// masked loads and a permute, reverted): lanes that repeat a corner or skip
+// one, out of order, a span of exactly 30 elements and of 32, one ending at
+// the table's last element, one from an odd start.
+std::vector<std::vector<int>> span_patterns(int lanes, int table_size)
+{
+    std::vector<std::vector<int>> patterns(6, std::vector<int>(lanes));
+    for (int i = 0; i < lanes; ++i) {
+        const int h = i % std::max(lanes / 2, 1), last = std::max(lanes / 2 - 1, 1);
+        patterns[0][i] = 100 + 2 * (i * 3 / 5);
+        patterns[1][i] = 240 - 2 * ((i * 7) % lanes);
+        patterns[2][i] = 300 + (h * 30) / last;
+        patterns[3][i] = 400 + (h == last ? 32 : h);
+        patterns[4][i] = table_size - 2 - (h * 30) / last;
+        patterns[5][i] = 511 + 2 * ((h * 5) % 8);
+    }
+    return patterns;
+}
+
+TEST(DialectUpair, SpansOfPairsReadTheSameElements)
+{
+    expect_upair_patterns([](int lanes) { return span_patterns(lanes, int(spread_table().size())); }, 3);
 }
 
 // pn_upair (kernels/dialect.h) on every CPU binding: both parts of a gathered
