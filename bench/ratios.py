@@ -36,8 +36,8 @@ VSM_TARGET = 250e6
 ISA_ORDER = ["scalar", "sse4.2", "avx2", "avx512", "opencl"]
 # The cases of bench/penumbra_bench.cpp; other families' cases in the same
 # binary (bench/*_bench.cpp) have their own ratio scripts and are left out.
-OPS = ("memcpy", "table", "table_into", "opencv_integral", "vsm_r8", "vsm_r8_into", "vsm_r8_shuffled", "vssm", "vssm_into",
-       "vssm_shuffled", "diag_table_alloc")
+OPS = ("memcpy", "table", "table_into", "opencv_integral", "vsm_r8", "vsm_r8_into", "vsm_r8_shuffled", "vsm_r8_magnified", "vssm",
+       "vssm_into", "vssm_shuffled", "vssm_magnified", "diag_table_alloc")
 
 
 def parse_name(run_name):
