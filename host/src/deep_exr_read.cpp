@@ -117,6 +117,7 @@ DeepLayout inspect_deep(const InputFile& file, const ExrReadLimits& limits, cons
     detail::check_attribute_sizes(file, kind.operation);
     detail::Reading reading{&file, {}, {}};
     const detail::CoreContext core(reading, kind.operation);
+    detail::require_readers_agree(core, kind.operation);
     exr_storage_t storage{};
     exr_attr_box2i_t window{};
     exr_compression_t compression{};

@@ -60,6 +60,14 @@ void CoreContext::check(exr_result_t result, const std::string& what) const
                     "); re-create the file");
 }
 
+CoreTiles tile_descriptor(const CoreContext& core)
+{
+    CoreTiles tiles;
+    core.check(exr_get_tile_descriptor(core.get(), 0, &tiles.width, &tiles.height, &tiles.levels, &tiles.rounding),
+               "its tile description cannot be read");
+    return tiles;
+}
+
 void check_declared_sizes(const CoreContext& core, const exr_attr_box2i_t& window, const ExrReadLimits& limits,
                           bool tiled)
 {
@@ -86,11 +94,8 @@ void check_declared_sizes(const CoreContext& core, const exr_attr_box2i_t& windo
     // times the tile height) and one tile: bound both by the image itself, plus
     // room for tiles larger than a small image.
     if (tiled) {
-        uint32_t tile_w = 0, tile_h = 0;
-        exr_tile_level_mode_t levels{};
-        exr_tile_round_mode_t rounding{};
-        core.check(exr_get_tile_descriptor(core.get(), 0, &tile_w, &tile_h, &levels, &rounding),
-                   "its tile description cannot be read");
+        const CoreTiles tiles = tile_descriptor(core);
+        const uint32_t tile_w = tiles.width, tile_h = tiles.height;
         const std::uint64_t room = pixels + (std::uint64_t(1) << 22);
         if (std::uint64_t(tile_w) * tile_h > room || std::uint64_t(width) * tile_h > room ||
             std::uint64_t(tile_w) * std::uint64_t(height) > room)

@@ -48,6 +48,14 @@ private:
     exr_context_t ctxt_ = nullptr;
 };
 
+// The first part's tile description as the core library read it.
+struct CoreTiles {
+    uint32_t width = 0, height = 0;
+    exr_tile_level_mode_t levels{};
+    exr_tile_round_mode_t rounding{};
+};
+CoreTiles tile_descriptor(const CoreContext& core);
+
 // Error(Io) naming the file unless the data window holds at most
 // limits.max_pixels pixels and the file can hold the chunk offset table the
 // header implies (8 bytes a chunk), and, for a tiled file, its tiles are not

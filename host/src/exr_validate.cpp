@@ -216,6 +216,7 @@ void validate_exr(const InputFile& file, const ExrReadLimits& limits, std::strin
     Reading reading{&file, {}, {}};
     const CoreContext core(reading, operation);
     const Layout l = layout_of(core, file, operation);
+    require_readers_agree(core, operation);
     const exr_attr_box2i_t& window = l.window;
 
     const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;

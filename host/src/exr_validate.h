@@ -44,6 +44,15 @@ bool decode_exr(const InputFile& file, const std::vector<std::string>& channels,
 // type does not take, none is named twice (exr_validate.cpp says why).
 void check_attribute_sizes(const InputFile& file, std::string_view operation);
 
+// Throws Error(Io) naming the file unless OpenEXR's C++ reader reads the first
+// part's header as the core library did: storage (tiled or not), data window,
+// compression, channels and tiles, the fields its buffers are sized by. Every
+// size check is made on the core's reading, so a file the two read
+// differently (a damaged attribute one skips) is refused
+// (exr_readers_agree.cpp says why).
+class CoreContext;
+void require_readers_agree(const CoreContext& core, std::string_view operation);
+
 // Decoded bytes per stored byte, at most, for an OpenEXR compression code
 // (exr_compression_t); the figures, their sources and the one stated policy
 // (DWA) are in exr_validate.cpp.

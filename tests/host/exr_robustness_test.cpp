@@ -205,6 +205,31 @@ TEST_F(ExrRobustness, AttributeNamedTwiceIsRefused)
     expect_refused(file, "'dataWindow' twice");
 }
 
+// Found by CI's exr_reader_fuzz (stop 32: a 4 KB file, over 1 GiB asked for by
+// the C++ reader's ZIP compressor): an attribute with an empty type name. The
+// core library, whose reading every size check uses, gives up on the header
+// there and keeps defaults (a 64x64 window); OpenEXR's C++ reader reads on and
+// sizes its buffers by the real window. Two readings of the header that differ
+// in a field buffers are sized by are now refused, whatever the damage.
+TEST_F(ExrRobustness, HeaderTheTwoParsersReadDifferentlyIsRefused)
+{
+    const std::string file = valid_file("parsers.exr");
+    set_data_window(file, 999999, 0);  // the C++ reader would size 16 lines of 4 MB
+    std::string bytes = bytes_of(file);
+    // After the channel list (first, in name order): name, empty type, size 1, value.
+    bytes.insert(attribute(bytes, "channels").end(), std::string("junk\0\0\x01\0\0\0\0", 11));
+    put_bytes(file, bytes);
+    expect_refused(file, "read its data window differently");
+    // exr_channel_names reads no pixels: without the check, nothing after the
+    // header's checks stood between this file and the C++ reader's buffers.
+    try {
+        exr_channel_names(file);
+        ADD_FAILURE() << "the channels of " << file << " were listed";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("read its data window differently"), std::string::npos) << e.what();
+    }
+}
+
 // Found by exr_reader_fuzz: a scanline file whose header also carries a
 // `tiles` attribute has 0 scanlines per chunk for the core library (a division
 // by zero in the chunk walk).
