@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -115,6 +116,27 @@ TEST_F(DeepExrRobustness, RefusesAWindowBeyondTheLimit)
     } catch (const Error& e) {
         EXPECT_NE(e.message().find("more than the limit of 63"), std::string::npos) << e.what();
     }
+}
+
+// The damage of ExrRobustness.HeaderTheTwoParsersReadDifferentlyIsRefused (an
+// attribute with an empty type after the channel list), on a deep file: the
+// core library keeps defaults for a flat file there, but a deep one needs its
+// type attribute, which comes later, so the core refuses the header itself.
+// (require_readers_agree guards the deep reader too, for damage the core
+// passes.)
+TEST_F(DeepExrRobustness, AnAttributeWithAnEmptyTypeIsRefused)
+{
+    write_deep_exr(path("map.exr"), DeepShadowMap(8, 8, std::vector<std::uint32_t>(65, 0), {}, {}));
+    std::ifstream in(path("map.exr"), std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string channels("channels\0chlist\0", 16);
+    const std::size_t size_at = bytes.find(channels) + channels.size();
+    ASSERT_NE(bytes.find(channels), std::string::npos);
+    std::int32_t size = 0;
+    std::memcpy(&size, bytes.data() + size_at, sizeof size);
+    bytes.insert(size_at + 4 + std::size_t(size), std::string("junk\0\0\x01\0\0\0\0", 11));
+    std::ofstream(path("map.exr"), std::ios::binary | std::ios::trunc) << bytes;
+    expect_refused(path("map.exr"), ErrorCategory::Io, "its header cannot be read");
 }
 
 // Every truncation of a genuine file, scanline and tiled, compressed and not,
