@@ -86,11 +86,32 @@ TEST(OpenClBackendError, NamesCallAndError)
     EXPECT_STREQ(error.what(), "opencl: clEnqueueNDRangeKernel failed: CL_INVALID_WORK_GROUP_SIZE (-54)");
 }
 
+class ScopedEnvironment {
+public:
+    explicit ScopedEnvironment(const char* name) : name_(name)
+    {
+        if (const char* value = std::getenv(name)) saved_ = value;
+    }
+    ~ScopedEnvironment() { saved_ ? ::setenv(name_, saved_->c_str(), 1) : ::unsetenv(name_); }
+    void set(const char* value) const { value ? ::setenv(name_, value, 1) : ::unsetenv(name_); }
+
+private:
+    const char* name_;
+    std::optional<std::string> saved_;
+};
+
 // Runs sharing a cache folder take turns at PoCL's cache (program_cache.h,
 // DriverCacheLock): while one holds the lock, another description of the lock
 // file (as another process or thread opens it) cannot take it; after, it can.
+// In a folder of its own: ctest -j2 runs other tests beside this one, and one
+// that builds an OpenCL program in the shared cache holds the same lock (the
+// "after" check failed so, once, in a fresh-root CI run).
 TEST(DriverCacheLock, ExcludesOthersWhileHeldAndReleasesAfter)
 {
+    const fs::path folder = path_shared_with_child("driver-cache-lock");
+    fs::create_directories(folder);
+    const ScopedEnvironment cache("PENUMBRA_CACHE_DIR");
+    cache.set(folder.c_str());
     const std::string lock_file = cache_directory() + "/pocl.lock";
     auto other_can_lock = [&] {
         const int fd = ::open(lock_file.c_str(), O_RDWR | O_CLOEXEC);
@@ -105,6 +126,7 @@ TEST(DriverCacheLock, ExcludesOthersWhileHeldAndReleasesAfter)
         EXPECT_FALSE(other_can_lock());
     }
     EXPECT_TRUE(other_can_lock());
+    fs::remove_all(folder);
 }
 
 TEST(ProgramKey, ChangesWithEveryField)
@@ -128,20 +150,6 @@ TEST(ProgramKey, ChangesWithEveryField)
     // Field boundaries count: moving a character from one field to the next is another key.
     EXPECT_NE(key, changed([](ProgramIdentity& id) { id.source = "sr", id.options = "c-O"; }));
 }
-
-class ScopedEnvironment {
-public:
-    explicit ScopedEnvironment(const char* name) : name_(name)
-    {
-        if (const char* value = std::getenv(name)) saved_ = value;
-    }
-    ~ScopedEnvironment() { saved_ ? ::setenv(name_, saved_->c_str(), 1) : ::unsetenv(name_); }
-    void set(const char* value) const { value ? ::setenv(name_, value, 1) : ::unsetenv(name_); }
-
-private:
-    const char* name_;
-    std::optional<std::string> saved_;
-};
 
 TEST(CacheDirectory, FollowsTheDocumentedOrder)
 {
