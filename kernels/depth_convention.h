@@ -152,10 +152,11 @@ PN_FN pn_float depth_lit(pn_float stored, pn_float threshold, DepthConversion c)
     return pn_select(lit, 1.0f, 0.0f);
 }
 
-/* A shadow map's texel (x, y), clamped to the map, as normalised depth. */
+/* A shadow map's texel (x, y), clamped to the map, as normalised depth; the
+ * map's range was checked up front (the percentage-closer family's host). */
 PN_FN pn_float depth_fetch(PN_GLOBAL const float* depth, pn_dims map, pn_int x, pn_int y, DepthConversion c)
 {
-    return depth_to_normalized(pn_fetch(depth, map, x, y), c);
+    return depth_checked_to_normalized_as(pn_fetch(depth, map, x, y), c, c.kind);
 }
 
 #endif
