@@ -39,12 +39,12 @@
 #define PENUMBRA_DEPTH_CONVENTION_H
 
 /* The per-texel loops (the table builds, the direct window sums) call the
- * `_as` forms with `kind` a literal, c.kind dispatched once per call
- * (PN_DEPTH_KIND_LITERAL, below), so that the kind's branches and the unused
- * clamps fold away and normalised depth compiles to the loop it was before
- * conventions: with c.kind tested in the loop, the conversion cost the exact
- * table's build a quarter (docs/integration.md, "Depth conventions"). The
- * forms without `_as` read c.kind, for the per-receiver loads. */
+ * `_as` forms with `kind` a literal, c.kind dispatched once per block or
+ * strip (PN_DEPTH_KIND_LITERAL, below), so that the kind's branches fold
+ * away whatever the compiler hoists and normalised depth compiles to the loop
+ * it was before conventions. The forms without `_as` read c.kind, for the
+ * per-receiver loads. What each convention costs: docs/integration.md,
+ * "Depth conventions", "Measured". */
 
 /* Runs CALL(k) with k the literal PN_DEPTH_* equal to the uniform `kind`:
  * CALL is a function-like macro the caller defines around its loop. */
@@ -71,8 +71,8 @@ PN_FN pn_mask depth_outside_as(pn_float z, DepthConversion c, int kind)
  * value outside [0, 1] or an infinity (a vanishing denominator), never NaN
  * unless the stored value is. For the per-texel loops that clamp l into [0, 1]
  * anyway and flag or refuse what lies outside the range (the table builds,
- * the direct window sums): there the clamps below cost 13% of the exact
- * table's build (docs/integration.md, "Depth conventions"). */
+ * the direct window sums), where every operation on the way from the load
+ * to the stores is paid. */
 PN_FN pn_float depth_to_unclamped_as(pn_float z, DepthConversion c, int kind)
 {
     if (kind == PN_DEPTH_NORMALIZED) return z;
