@@ -38,11 +38,10 @@
 #ifndef PENUMBRA_DEPTH_CONVENTION_H
 #define PENUMBRA_DEPTH_CONVENTION_H
 
-/* The per-texel loops (the table builds, the direct window sums) call the
- * `_as` forms with `kind` a literal, c.kind dispatched once per block or
- * strip (PN_DEPTH_KIND_LITERAL, below), so that the kind's branches fold
- * away whatever the compiler hoists and normalised depth compiles to the loop
- * it was before conventions. The forms without `_as` read c.kind, for the
+/* The table builds call the `_as` forms with `kind` a literal, c.kind
+ * dispatched once per block or band (PN_DEPTH_KIND_LITERAL, below), so that
+ * the kind's branches fold away whatever the compiler hoists and normalised
+ * depth compiles to the loop it was before conventions. The forms without `_as` read c.kind, for the
  * per-receiver loads. What each convention costs: docs/integration.md,
  * "Depth conventions", "Measured". */
 
