@@ -70,8 +70,8 @@ PN_FN void direct_box_sums(PN_GLOBAL const float* depth, pn_dims d, DepthConvers
         const pn_int origin = w.y0 * d.pitch + w.x0;
         for (int dy = 0; dy < side; ++dy)
             for (int dx = 0; dx < side; ++dx) {
-                texel_values(depth_to_normalized(pn_gather(depth, origin + (dy * d.pitch + dx)), c), encoding,
-                             c_positive, c_negative, moments, v);
+                const pn_float stored = pn_gather(depth, origin + (dy * d.pitch + dx));
+                texel_values(depth_to_unclamped_as(stored, c, c.kind), encoding, c_positive, c_negative, moments, v);
                 for (int k = 0; k < moments; ++k) sum[k] = sum[k] + v[k];
             }
         return;
@@ -80,16 +80,21 @@ PN_FN void direct_box_sums(PN_GLOBAL const float* depth, pn_dims d, DepthConvers
     for (int dy = 0; dy < side; ++dy)
         for (int dx = 0; dx < side; ++dx) {
             const pn_dmask inside = pn_mask_to_dmask(pn_and(columns > (float)dx, rows > (float)dy));
-            texel_values(depth_fetch(depth, d, w.x0 + dx, w.y0 + dy, c), encoding, c_positive, c_negative, moments, v);
+            texel_values(depth_to_unclamped_as(pn_fetch(depth, d, w.x0 + dx, w.y0 + dy), c, c.kind), encoding,
+                         c_positive, c_negative, moments, v);
             for (int k = 0; k < moments; ++k) sum[k] = sum[k] + pn_dselect(inside, v[k], 0.0);
         }
 }
 
 /* The window's means of the values: the direct counterpart of a table's
  * box query (`depth`: the map, one plane of dims `d`, stored in convention
- * `c`, converted per tap: kernels/depth_convention.h). One reciprocal of the
- * area, not a division per value: double divisions are much of MSM's and
- * EVSM's time; it moves a mean by at most one rounding (2^-53 relative). */
+ * `c`, converted per tap without clamps: the host checked the map's range
+ * up front, and texel_values clamps l; kernels/depth_convention.h. The kind
+ * is not made a literal here: four copies of EVSM's window made its
+ * normalised path slower, docs/integration.md, "Depth conventions").
+ * One reciprocal of the area, not a division per value: double divisions are
+ * much of MSM's and EVSM's time; it moves a mean by at most one rounding
+ * (2^-53 relative). */
 PN_FN void direct_box_means(PN_GLOBAL const float* depth, pn_dims d, DepthConversion c, TexelWindow w, int radius,
                             int encoding, float c_positive, float c_negative, int moments, pn_double* mean)
 {

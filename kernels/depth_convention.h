@@ -38,25 +38,75 @@
 #ifndef PENUMBRA_DEPTH_CONVENTION_H
 #define PENUMBRA_DEPTH_CONVENTION_H
 
+/* The table builds call the `_as` forms with `kind` a literal, c.kind
+ * dispatched once per block or band (PN_DEPTH_KIND_LITERAL, below), so that
+ * the kind's branches fold away whatever the compiler hoists and normalised
+ * depth compiles to the loop it was before conventions. The forms without `_as` read c.kind, for the
+ * per-receiver loads. What each convention costs: docs/integration.md,
+ * "Depth conventions", "Measured". */
+
+/* Runs CALL(k) with k the literal PN_DEPTH_* equal to the uniform `kind`:
+ * CALL is a function-like macro the caller defines around its loop. */
+#define PN_DEPTH_KIND_LITERAL(kind, CALL)                                   \
+    do {                                                                    \
+        if ((kind) == PN_DEPTH_NORMALIZED) CALL(PN_DEPTH_NORMALIZED);        \
+        else if ((kind) == PN_DEPTH_LINEAR) CALL(PN_DEPTH_LINEAR);           \
+        else if ((kind) == PN_DEPTH_PERSPECTIVE) CALL(PN_DEPTH_PERSPECTIVE); \
+        else CALL(PN_DEPTH_REVERSED);                                       \
+    } while (0)
+
 /* Stored depths the conventions refuse: outside [low, high] (normalised:
  * [0, 1], so that a zeroed DepthConversion is today's contract), NaN and
  * infinities included. */
+PN_FN pn_mask depth_outside_as(pn_float z, DepthConversion c, int kind)
+{
+    const float low = kind == PN_DEPTH_NORMALIZED ? 0.0f : c.low;
+    const float high = kind == PN_DEPTH_NORMALIZED ? 1.0f : c.high;
+    return pn_not(pn_and(z >= low, z <= high));
+}
+
+/* The conversion alone (top of this file), without the clamps: for a
+ * stored value inside the range, l up to a rounding above 1; outside it, a
+ * value outside [0, 1] or an infinity (a vanishing denominator), never NaN
+ * unless the stored value is. For the per-texel loops that clamp l into [0, 1]
+ * anyway and flag or refuse what lies outside the range (the table builds,
+ * the direct window sums), where every operation on the way from the load
+ * to the stores is paid. */
+PN_FN pn_float depth_to_unclamped_as(pn_float z, DepthConversion c, int kind)
+{
+    if (kind == PN_DEPTH_NORMALIZED) return z;
+    if (kind == PN_DEPTH_LINEAR) return (z - c.low) * c.scale;
+    const pn_float far_side = kind == PN_DEPTH_PERSPECTIVE ? z : 1.0f - z;  /* grows with d */
+    const pn_float near_side = kind == PN_DEPTH_PERSPECTIVE ? 1.0f - z : z; /* shrinks with d */
+    return far_side / (1.0f + c.scale * near_side);
+}
+
+/* The same clamped into [0, 1], for stored values the caller checks or flags
+ * (a map checked up front, a table build's flag): equal to
+ * depth_to_normalized_as on every value in the range, one clamp fewer. */
+PN_FN pn_float depth_checked_to_normalized_as(pn_float stored, DepthConversion c, int kind)
+{
+    if (kind == PN_DEPTH_NORMALIZED) return stored;
+    return pn_clamp(depth_to_unclamped_as(stored, c, kind), 0.0f, 1.0f);
+}
+
+/* The normalised linear depth of a stored value, clamped (top of this file):
+ * pn_clamp(depth_to_unclamped_as(...), 0, 1) of every value in the range. */
+PN_FN pn_float depth_to_normalized_as(pn_float stored, DepthConversion c, int kind)
+{
+    if (kind == PN_DEPTH_NORMALIZED) return stored;
+    return depth_checked_to_normalized_as(pn_clamp(stored, c.low, c.high), c, kind);
+}
+
 PN_FN pn_mask depth_outside(pn_float z, DepthConversion c)
 {
-    const float low = c.kind == PN_DEPTH_NORMALIZED ? 0.0f : c.low;
-    const float high = c.kind == PN_DEPTH_NORMALIZED ? 1.0f : c.high;
-    return pn_not(pn_and(z >= low, z <= high));
+    return depth_outside_as(z, c, c.kind);
 }
 
 /* The normalised linear depth of a stored value (top of this file). */
 PN_FN pn_float depth_to_normalized(pn_float stored, DepthConversion c)
 {
-    if (c.kind == PN_DEPTH_NORMALIZED) return stored;
-    const pn_float z = pn_clamp(stored, c.low, c.high);
-    if (c.kind == PN_DEPTH_LINEAR) return pn_clamp((z - c.low) * c.scale, 0.0f, 1.0f);
-    const pn_float far_side = c.kind == PN_DEPTH_PERSPECTIVE ? z : 1.0f - z;  /* grows with d */
-    const pn_float near_side = c.kind == PN_DEPTH_PERSPECTIVE ? 1.0f - z : z; /* shrinks with d */
-    return pn_min(far_side / (1.0f + c.scale * near_side), 1.0f);
+    return depth_to_normalized_as(stored, c, c.kind);
 }
 
 /* dl/dz at normalised depth l (top of this file): scales a receiver plane's
@@ -101,10 +151,11 @@ PN_FN pn_float depth_lit(pn_float stored, pn_float threshold, DepthConversion c)
     return pn_select(lit, 1.0f, 0.0f);
 }
 
-/* A shadow map's texel (x, y), clamped to the map, as normalised depth. */
+/* A shadow map's texel (x, y), clamped to the map, as normalised depth; the
+ * map's range was checked up front (the percentage-closer family's host). */
 PN_FN pn_float depth_fetch(PN_GLOBAL const float* depth, pn_dims map, pn_int x, pn_int y, DepthConversion c)
 {
-    return depth_to_normalized(pn_fetch(depth, map, x, y), c);
+    return depth_checked_to_normalized_as(pn_fetch(depth, map, x, y), c, c.kind);
 }
 
 #endif
