@@ -65,8 +65,10 @@ private:
 
 Receivers Receivers::allocate(int width, int height)
 {
-    return {Image(width, height, 3), Image(width, height, 3), Image(width, height, 3),
-            Image(width, height, 1), Image(width, height, 1), Image(width, height, 1)};
+    Receivers out{Image(width, height, 3), Image(width, height, 3), Image(width, height, 3),
+                  Image(width, height, 1), Image(width, height, 1), Image(width, height, 1), Image(width, height, 1)};
+    out.surface.fill(0, -1.0f);
+    return out;
 }
 
 Image Receivers::positions_and_normals() const
@@ -105,6 +107,7 @@ Receivers render_receivers(const Scene& scene, int width, int height)
                 store3(out.normal, x, y, hit->normal);
                 out.view_depth.at(0, x, y) = float(hit->t);
                 out.hit.at(0, x, y) = 1;
+                out.surface.at(0, x, y) = float(hit->primitive);
                 out.mask.at(0, x, y) = in_unit_cube(uvz) ? 1.0f : 0.0f;
             }
     });
