@@ -71,6 +71,15 @@ Receivers Receivers::allocate(int width, int height)
     return out;
 }
 
+Image Receivers::positions_normals_and_surface() const
+{
+    const Image six = positions_and_normals();
+    Image out(width(), height(), 7);
+    for (int c = 0; c < 7; ++c)
+        for (int y = 0; y < height(); ++y) std::copy_n((c < 6 ? six : surface).row(c < 6 ? c : 0, y), width(), out.row(c, y));
+    return out;
+}
+
 Image Receivers::positions_and_normals() const
 {
     Image out(width(), height(), 6);

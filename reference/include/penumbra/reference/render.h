@@ -75,6 +75,9 @@ struct Receivers {
     // World positions then normals, 6 planes: what Pismo reads to count the
     // receiver's own surface (docs/pismo.md), as RX.exr's P and N channels.
     Image positions_and_normals() const;
+    // The same and then `surface`, 7 planes: with maps that carry surface ids,
+    // what Pismo reads to tell P's own surface from the others.
+    Image positions_normals_and_surface() const;
 };
 
 Receivers render_receivers(const Scene& scene, int width, int height);
