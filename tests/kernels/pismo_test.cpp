@@ -396,35 +396,38 @@ PN_BACKEND_TEST(Pismo, ShiftedGridsLetThinSlatsConvergeToTheClosedForm)
 PN_BACKEND_TEST(Pismo, OddSizesAndChunksGiveTheWholeImagesValues)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    const Case& c = scene_case("contact", 0);
-    const PismoMaps maps = library_maps(c.maps);
-    const Image& world = c.receivers.world_position;
-    PismoOptions o;
-    o.rays = 16;
-    const Image whole = pismo_shade(ctx, maps, world, o);
-    expect_in_unit_range(whole, "whole");
-    std::vector<int> widths = testing::lane_edge_widths();
-    widths.push_back(7);
-    for (int w : widths)
-        for (int h : {1, 3}) {
-            if (w > world.width()) continue;
-            const int x0 = 5 % (world.width() - w + 1);
-            Image crop(w, h, 3);
-            for (int ch = 0; ch < 3; ++ch)
+    // Positions only, and fence with normals and surface ids (the layer walk).
+    for (const bool ids : {false, true}) {
+        const Case& c = scene_case(ids ? "fence" : "contact", 0);
+        const PismoMaps maps = library_maps(c.maps, PismoDepths::Layered, ids);
+        const Image world = ids ? c.receivers.positions_normals_and_surface() : c.receivers.world_position;
+        PismoOptions o;
+        o.rays = 16;
+        const Image whole = pismo_shade(ctx, maps, world, o);
+        expect_in_unit_range(whole, "whole");
+        std::vector<int> widths = testing::lane_edge_widths();
+        widths.push_back(7);
+        for (int w : widths)
+            for (int h : {1, 3}) {
+                if (w > world.width()) continue;
+                const int x0 = 5 % (world.width() - w + 1);
+                Image crop(w, h, world.channels());
+                for (int ch = 0; ch < world.channels(); ++ch)
+                    for (int y = 0; y < h; ++y)
+                        for (int x = 0; x < w; ++x) crop.at(ch, x, y) = world.at(ch, x + x0, y + 10);
+                const Image got = pismo_shade(ctx, maps, crop, o);
                 for (int y = 0; y < h; ++y)
-                    for (int x = 0; x < w; ++x) crop.at(ch, x, y) = world.at(ch, x + x0, y + 10);
-            const Image got = pismo_shade(ctx, maps, crop, o);
-            for (int y = 0; y < h; ++y)
-                for (int x = 0; x < w; ++x)
-                    EXPECT_EQ(got.at(0, x, y), whole.at(0, x + x0, y + 10))
-                        << w << "x" << h << " at " << x << ", " << y << " on " << backend;
-        }
-    // One row a chunk: the estimates of 4 maps of one row are 4 W floats.
-    Image chunked(world.width(), world.height(), 1);
-    detail::pismo_shade_rays(ctx, maps, detail::pismo_ray_table(maps.vertices(), maps.triangles(), o.rays),
-                             o.bias_texels, world, chunked, 1);
-    for (int y = 0; y < world.height(); ++y)
-        for (int x = 0; x < world.width(); ++x) ASSERT_EQ(chunked.at(0, x, y), whole.at(0, x, y)) << x << ", " << y;
+                    for (int x = 0; x < w; ++x)
+                        EXPECT_EQ(got.at(0, x, y), whole.at(0, x + x0, y + 10))
+                            << w << "x" << h << " at " << x << ", " << y << " on " << backend << (ids ? ", ids" : "");
+            }
+        // One row a chunk: the estimates of 4 maps of one row are 4 W floats.
+        Image chunked(world.width(), world.height(), 1);
+        detail::pismo_shade_rays(ctx, maps, detail::pismo_ray_table(maps.vertices(), maps.triangles(), o.rays),
+                                 o.bias_texels, world, chunked, 1);
+        for (int y = 0; y < world.height(); ++y)
+            for (int x = 0; x < world.width(); ++x) ASSERT_EQ(chunked.at(0, x, y), whole.at(0, x, y)) << x << ", " << y;
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Pismo, ::testing::ValuesIn(backend_names()), backend_test_name);
