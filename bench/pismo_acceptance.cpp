@@ -14,11 +14,15 @@
 // no kernel. Prints a Markdown table and writes every row to a CSV for
 // bench/pismo_acceptance_chart.py. Figures, not checks.
 //
-// usage: pismo_acceptance [--quick] [--scenes A,B] [--settings fitted:1024:3,...] [--centred-grids] OUT.csv
+// usage: pismo_acceptance [--quick] [--scenes A,B] [--settings fitted:1024:3,...] [--centred-grids]
+//                         [--surface-ids] OUT.csv
 //   --scenes        a subset of contact, overlap, fence
 //   --settings      cameras:map size:highest level, instead of the four above
 //   --centred-grids every map's pixel grid centred on the fixation point, as
 //                   before the shifted grids (LayeredMapOptions::shift_grids)
+//   --surface-ids   each test knows the receiver's surface and each layer's
+//                   (PismoReferenceOptions::surface_ids, docs/pismo.md "A
+//                   surface id per layer"); maps MB then counts the ids (4 B a layer)
 //
 // The truth has S x S strata per receiver; its noise is its RMSE against the
 // truth at 2S x 2S (4x the rays), which holds about sqrt(1 + 1/4) times the
@@ -56,6 +60,7 @@ struct Config {
     std::vector<MapSetting> settings = {{"frustum", 384, 3}, {"fitted", 384, 4}, {"fitted", 512, 4},
                                          {"fitted", 1024, 3}};
     bool shift_grids = true;
+    bool surface_ids = false;
 };
 
 std::vector<std::string> split(const std::string& list, char separator)
@@ -116,6 +121,10 @@ Row measure(const reference::Scene& scene, const SceneTruth& t, const MapSetting
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     testing::PismoReferenceOptions po;
     po.rays = c.strata * c.strata;
+    po.surface_ids = c.surface_ids;
+    std::size_t id_bytes = 0;
+    if (c.surface_ids)
+        for (const auto& ids : maps.surface_ids) id_bytes += 4 * ids.size();
     const testing::PismoEstimates e = testing::pismo_estimates(maps, t.rx, po, true);
     const Image* mask = &t.rx.mask;
     return {scene.name,
@@ -130,7 +139,7 @@ Row measure(const reference::Scene& scene, const SceneTruth& t, const MapSetting
             reference::rmse(e.pismo, t.truth, &t.planes),
             reference::rmse(e.averaged, t.truth, &t.planes),
             t.planes_noise,
-            double(testing::pismo_layered_bytes(maps)) / 1e6,
+            double(testing::pismo_layered_bytes(maps) + id_bytes) / 1e6,
             seconds};
 }
 
@@ -162,18 +171,21 @@ int main(int argc, char** argv)
             c.settings = parse_settings(argv[++i]);
         } else if (arg == "--centred-grids") {
             c.shift_grids = false;
+        } else if (arg == "--surface-ids") {
+            c.surface_ids = true;
         } else {
             csv = arg;
         }
     }
     if (csv.empty()) {
         std::fprintf(stderr, "usage: pismo_acceptance [--quick] [--scenes A,B] [--settings fitted:1024:3,...] "
-                             "[--centred-grids] OUT.csv\n");
+                             "[--centred-grids] [--surface-ids] OUT.csv\n");
         return 2;
     }
-    std::printf("pismo_acceptance: %dx%d receivers, truth %d^2 strata (noise against %d^2), Pismo %d rays, grids %s\n\n",
+    std::printf("pismo_acceptance: %dx%d receivers, truth %d^2 strata (noise against %d^2), Pismo %d rays, grids %s%s\n\n",
                 c.view_width, c.view_height, c.strata, 2 * c.strata, c.strata * c.strata,
-                c.shift_grids ? "shifted (pismo_subtexel_shift)" : "centred on the fixation point");
+                c.shift_grids ? "shifted (pismo_subtexel_shift)" : "centred on the fixation point",
+                c.surface_ids ? ", surface ids" : "");
     std::printf("| scene | cameras | map | level | maps | Pismo (layered) | averaged hard shadows | Pismo (maximum depth) "
                 "| truth noise | Pismo, planes | averaged, planes | truth noise, planes | maps MB | render s |\n"
                 "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");

@@ -8,7 +8,10 @@
 // docs/pismo.md, "The kernel", has the command and the figures. The scalar
 // binding is the oracle, not a schedule: it is left out.
 //
-// Case names: pismo/backend:B/level:L/size:512/threads:T, pismo_build/level:L/size:512.
+// Case names: pismo/backend:B/level:L/size:512/threads:T, pismo_build/level:L/size:512;
+// and the cost of surface ids (docs/pismo.md, "A surface id per layer"), level 1,
+// 1 thread: pismo_planes:6/backend:B (normals) against pismo_planes:7/backend:B
+// (normals and ids: the layer walk).
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
 
@@ -37,25 +40,30 @@ const reference::Scene& contact()
     return scene;
 }
 
-PismoMaps build(int level)
+PismoMaps build(int level, bool surface_ids = false)
 {
     reference::LayeredMapOptions o;
     o.size = kMapSize;
-    return testing::library_maps(reference::render_pismo_maps(contact(), level, o));
+    return testing::library_maps(reference::render_pismo_maps(contact(), level, o), PismoDepths::Layered, surface_ids);
 }
 
-const PismoMaps& maps(int level)
+// Level `level`'s maps, with surface ids when planes is 7.
+const PismoMaps& maps(int level, int planes = 3)
 {
     static std::map<int, PismoMaps> made;
-    auto it = made.find(level);
-    if (it == made.end()) it = made.emplace(level, build(level)).first;
+    const int key = 10 * level + planes;
+    auto it = made.find(key);
+    if (it == made.end()) it = made.emplace(key, build(level, planes == 7)).first;
     return it->second;
 }
 
-const Image& receivers()
+// World positions (3 planes), then normals (6), then surface ids (7).
+const Image& receivers(int planes = 3)
 {
-    static const Image rx = reference::render_receivers(contact(), kWidth, kHeight).world_position;
-    return rx;
+    static const reference::Receivers rx = reference::render_receivers(contact(), kWidth, kHeight);
+    static const Image three = rx.world_position, six = rx.positions_and_normals(),
+                       seven = rx.positions_normals_and_surface();
+    return planes == 7 ? seven : planes == 6 ? six : three;
 }
 
 // The rays the pattern casts per point (at least one per triangle, so a few more than kRays).
@@ -64,10 +72,10 @@ double rays_per_point(const PismoMaps& m)
     return double(detail::pismo_ray_table(m.vertices(), m.triangles(), kRays).rays.size() / PN_PISMO_RAY_FLOATS);
 }
 
-void shade(benchmark::State& state, const std::string& backend, int threads, int level)
+void shade(benchmark::State& state, const std::string& backend, int threads, int level, int planes = 3)
 {
-    const PismoMaps& m = maps(level);
-    const Image& rx = receivers();
+    const PismoMaps& m = maps(level, planes);
+    const Image& rx = receivers(planes);
     Image out(kWidth, kHeight, 1);
     PismoOptions o;
     o.rays = kRays;
@@ -101,6 +109,15 @@ void build_maps(benchmark::State& state, int level)
             build_maps(st, level);
         })->UseRealTime()->Unit(benchmark::kMillisecond)->Iterations(1);
     }
+    for (int planes : {6, 7})
+        for (const std::string& backend : testing::backend_names()) {
+            if (backend == "scalar") continue;
+            const int arena = backend == "opencl" ? 0 : 1;
+            const std::string name = "pismo_planes:" + std::to_string(planes) + "/backend:" + backend + "/level:1";
+            benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) {
+                shade(st, backend, arena, 1, planes);
+            })->UseRealTime()->Unit(benchmark::kMillisecond);
+        }
     return true;
 }();
 

@@ -12,18 +12,24 @@
 // exact_tests, exact_estimate), and the mean signed error (below 0: too dark).
 // Float64 (tests/support/pismo_reference.h), no kernel. Figures, not checks.
 //
-// usage: pismo_error_classes [LEVEL [MAP_SIZE [BIAS_TEXELS [NORMALS [SCENES [SHIFTED [LIFT]]]]]]]
+// usage: pismo_error_classes [LEVEL [MAP_SIZE [BIAS_TEXELS [NORMALS [SCENES [SHIFTED [LIFT [OTHER [OWN]]]]]]]]]
 //        (defaults 3, 384, 2, 0, contact,overlap,fence, 1, 0; fitted cameras;
 //        NORMALS 1: the receiver's own surface takes part, docs/pismo.md
 //        "The receiver's own surface"; SHIFTED 0: every map's grid centred on
 //        the fixation point, as before LayeredMapOptions::shift_grids; LIFT
 //        above 0: a normal offset of that many texels instead of the slope
-//        term, PismoReferenceOptions::lift_texels, measured, not the method)
+//        term, PismoReferenceOptions::lift_texels, measured, not the method;
+//        OTHER 0 or above: surface ids, a layer of another surface than P's
+//        occludes with a bias of OTHER texels, one of P's own never (OWN 1,
+//        the default) or with the slope term's bias (OWN 0); docs/pismo.md
+//        "A surface id per layer", measured, not the method)
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
+#include <span>
 #include <string>
 #include <vector>
 #include <tbb/blocked_range.h>
@@ -67,8 +73,8 @@ int receiver_class(const reference::Scene& scene, const Image& planes, Vec3 p, V
 }
 
 // -1 when the hard test of `map` at p is right against `exact_blocked`, else the cause's index.
-int wrong_decision(const LayeredDepthMap& map, Vec3 p, Vec3 n, const testing::PismoReferenceOptions& o,
-                   bool exact_blocked)
+int wrong_decision(const LayeredDepthMap& map, std::span<const std::int32_t> ids, Vec3 p, Vec3 n, int surface,
+                   const testing::PismoReferenceOptions& o, bool exact_blocked)
 {
     const MapCamera& c = map.camera();
     const Vec3 local = p - vec(c.position);
@@ -79,7 +85,7 @@ int wrong_decision(const LayeredDepthMap& map, Vec3 p, Vec3 n, const testing::Pi
     if (!(d > 0 && fx >= 0 && fx < map.width() && fy >= 0 && fy < map.height())) return exact_blocked ? 5 : -1;
     const double depth = length(local), texel = 2 * c.tan_half_fov * depth / map.width();
     const auto layers = map.layers(int(fx), int(fy));
-    const bool occluded = testing::hard_shadow_test(map, p, n, o);
+    const bool occluded = testing::hard_shadow_test(map, ids, p, n, surface, o);
     if (occluded == exact_blocked) return -1;
     if (occluded) return !layers.empty() && (depth - layers.front()) / texel < 8 ? 0 : 1;
     if (layers.empty()) return 2;
@@ -112,18 +118,31 @@ Image estimate(const reference::PismoMaps& maps, const reference::Receivers& rx,
             for (int x = 0; x < rx.width(); ++x) {
                 if (rx.mask.at(0, x, y) == 0) continue;
                 const Vec3 p = at3(rx.world_position, x, y), n = normals ? at3(rx.normal, x, y) : Vec3{};
-                out.at(0, x, y) = float(v.averaged ? testing::averaged_hard_shadows(layered, p, o, n)
-                                                   : testing::pismo_visibility(layered, p, o, n));
+                const int surface = int(rx.surface.at(0, x, y));
+                out.at(0, x, y) = float(v.averaged ? testing::averaged_hard_shadows(layered, p, o, n, surface)
+                                                   : testing::pismo_visibility(layered, p, o, n, surface));
             }
     });
     return out;
+}
+
+// The casters laid out as scene_surfaces, the others there with opacity 0 (left
+// out), so that a hit's primitive is its surface id (Receivers::surface).
+std::vector<reference::Primitive> casters_by_surface(const reference::Scene& scene)
+{
+    std::vector<reference::Primitive> surfaces = reference::scene_surfaces(scene);
+    const std::vector<int> kept = reference::pismo_caster_surfaces(scene);
+    for (std::size_t i = 0; i < surfaces.size(); ++i)
+        if (std::find(kept.begin(), kept.end(), int(i)) == kept.end())
+            std::get<reference::Plane>(surfaces[i]).opacity = 0;  // only planes are left out
+    return surfaces;
 }
 
 // Per class and variant: RMSE and mean signed error against the truth.
 void report_sources(const reference::Scene& scene, const reference::PismoMaps& maps, const reference::Receivers& rx,
                     const Image& truth, const Image& classes, const testing::PismoReferenceOptions& o, bool normals)
 {
-    const reference::PreparedScene casters(reference::pismo_casters(scene));
+    const reference::PreparedScene casters(casters_by_surface(scene));
     constexpr int kCount = int(std::size(kVariants));
     std::array<std::array<double, kCount>, 4> sq{}, signed_sum{};
     std::array<int, 4> count{};
@@ -154,7 +173,7 @@ void report_sources(const reference::Scene& scene, const reference::PismoMaps& m
 }
 
 void report(const reference::Scene& scene, int level, int size, double bias_texels, bool normals, bool shifted,
-            double lift)
+            double lift, double other, bool skip_own)
 {
     const reference::Receivers rx = reference::render_receivers(scene, 64, 48);
     const Image truth = reference::ground_truth(scene, rx, {32});
@@ -167,6 +186,9 @@ void report(const reference::Scene& scene, int level, int size, double bias_texe
     po.rays = 1024;
     po.bias_texels = bias_texels;
     po.lift_texels = lift;
+    po.surface_ids = other >= 0;
+    po.other_bias_texels = other;
+    po.skip_own_layers = skip_own;
     const testing::PismoEstimates e = testing::pismo_estimates(maps, rx, po, normals);
     const reference::PreparedScene prepared(scene);
     std::array<Tally, 4> tally{};
@@ -189,7 +211,9 @@ void report(const reference::Scene& scene, int level, int size, double bias_texe
                 const Vec3 vertex = maps.mesh.vertices[j];
                 const bool blocked = prepared.transmittance({origin, vertex - origin}, 0.0, 1.0) < 0.5;
                 ++t.tests;
-                if (const int cause = wrong_decision(maps.maps[j], p, normals ? n : Vec3{}, po, blocked); cause >= 0)
+                if (const int cause = wrong_decision(maps.maps[j], maps.surface_ids[j], p, normals ? n : Vec3{},
+                                                     int(rx.surface.at(0, x, y)), po, blocked);
+                    cause >= 0)
                     ++t.wrong[std::size_t(cause)];
             }
         }
@@ -197,6 +221,9 @@ void report(const reference::Scene& scene, int level, int size, double bias_texe
                 maps.maps.size(), size, bias_texels, normals ? ", with the receiver's own surface" : "",
                 shifted ? "shifted" : "centred");
     if (lift > 0) std::printf("(a normal offset of %.2f texels instead of the slope term: measured, not the method)\n\n", lift);
+    if (other >= 0)
+        std::printf("(surface ids: other surfaces' layers biased %.2f texels, P's own %s: measured, not the method)\n\n",
+                    other, skip_own ? "never occlude" : "with the slope term's bias");
     std::printf("| receivers | count | Pismo RMSE | averaged RMSE | share of Pismo's squared error |");
     for (const char* cause : kCauses) std::printf(" %s |", cause);
     std::printf("\n|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -225,8 +252,10 @@ int main(int argc, char** argv)
     for (std::string name; std::getline(names, name, ',');) scenes.push_back(name);
     const bool shifted = argc <= 6 || std::atoi(argv[6]) != 0;
     const double lift = argc > 7 ? std::atof(argv[7]) : 0.0;
+    const double other = argc > 8 ? std::atof(argv[8]) : -1.0;
+    const bool skip_own = argc <= 9 || std::atoi(argv[9]) != 0;
     std::printf("pismo_error_classes: 64x48 receivers, truth 32^2 strata, Pismo 1024 rays; hard decisions: "
                 "%% of (receiver, map) pairs of the class\n");
-    for (const std::string& name : scenes) report(reference::builtin_scene(name), level, size, bias, normals, shifted, lift);
+    for (const std::string& name : scenes) report(reference::builtin_scene(name), level, size, bias, normals, shifted, lift, other, skip_own);
     return 0;
 }

@@ -74,7 +74,7 @@
     X(pismo, pismo_estimates, pixel, PismoParams,                                                          \
       (PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))     \
     X(pismo, pismo_visibility, pixel, PismoParams,                                                         \
-      (PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), \
-       PN_IN(float), PN_OUT(float), PN_OUT(int)))
+      (PN_SOURCE(uint), PN_SOURCE(float), PN_SOURCE(float), PN_SOURCE(float), PN_SOURCE(uint), PN_SOURCE(float), \
+       PN_SOURCE(float), PN_IN(float), PN_OUT(float), PN_OUT(int)))
 
 #endif

@@ -325,7 +325,8 @@ typedef struct {
 #define PN_PISMO_TRIANGLE_UINTS 5  /* corners a, b, c (map indices), first ray, end of its rays */
 #define PN_PISMO_RAY_FLOATS 4      /* barycentric w_a, w_b, w_c, weight */
 typedef struct {
-    pn_dims receivers;  /* planes x, y, z: world position, then with `normals` the normal's x, y, z (a chunk of the caller's rows) */
+    pn_dims receivers;  /* planes x, y, z: world position, then with `normals` the normal's x, y, z, then with
+                           `surface_ids` the receiver's surface id (a chunk of the caller's rows) */
     pn_dims out;        /* estimates: maps x receiver rows; visibility: one plane of the receivers' size */
     pn_dims estimates;  /* visibility: the estimates image (maps x receiver rows); unused by the estimates */
     int map_width, map_height;
@@ -335,6 +336,8 @@ typedef struct {
     float bias_texels;  /* texel footprints at the point's depth */
     int normals;        /* 1: the receivers carry normals, and their own surface takes part (kernels/pismo.h) */
     float max_slope;    /* with normals: the slope term's cap, texels */
+    int surface_ids;    /* 1: the receivers carry a 7th plane, their surface id, and the test maps an id per layer */
+    float other_bias_texels; /* with surface_ids: the bias of a layer of another surface than the receiver's */
 } PismoParams;
 
 #ifdef __cplusplus

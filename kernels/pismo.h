@@ -28,6 +28,8 @@
  *   offsets   uint: every map's offsets into `depths`, maps one after
  *             another (map j's pixel q at j W H + q), then one end entry
  *   depths    float: every layer, nearest first within a pixel
+ *   ids       float (visibility): the surface id of each test-map layer,
+ *             parallel to depths (one stand-in element without ids)
  *   cameras   PN_PISMO_CAMERA_FLOATS floats per map: position, right, down,
  *             forward (3 each), 2 tan(fov/2), 2 tan(fov/2) / W, 2 unused
  *   triangles PN_PISMO_TRIANGLE_UINTS uints per triangle: corners a, b, c,
@@ -56,6 +58,15 @@
  *   elsewhere map k's bias grows by min(tan theta_k, max_slope) texels,
  *     theta_k the angle between n and V_k - P: the depth P's own surface
  *     spans across one texel seen from V_k (no acne at a lit terminator).
+ *
+ * Surface ids (p.surface_ids; docs/pismo.md, "A surface id per layer"): the
+ * receiver's 7th plane is the id of the surface it lies on (< 0: unknown, the
+ * rules above), each test-map layer carries the id of the surface it crosses.
+ * Map k then occludes when a layer of ANOTHER surface lies nearer than |P -
+ * V_k| minus other_bias_texels texels; a layer of P's own surface never
+ * occludes P (every caster is a convex solid, which cannot block a ray above
+ * its tangent plane at a point of its surface; the rays below it are blocked
+ * by the rules above, which stay).
  */
 #ifndef PENUMBRA_PISMO_H
 #define PENUMBRA_PISMO_H
@@ -64,9 +75,11 @@ typedef struct {
     pn_float x, y, z;
 } PismoPoint;
 
-/* A shading point: its position and its normal (zero without p.normals). */
+/* A shading point: its position, its normal (zero without p.normals) and its
+ * surface id (-1 without p.surface_ids). */
 typedef struct {
     PismoPoint p, n;
+    pn_float surface;
 } PismoReceiver;
 
 /* Where a point lands in one map. */
@@ -137,6 +150,8 @@ PN_FN PismoReceiver pismo_receiver(PN_GLOBAL const float* receivers, PismoParams
         r.n.y = load_checked_plane(receivers, p.receivers, 4, x, y, bad_rows);
         r.n.z = load_checked_plane(receivers, p.receivers, 5, x, y, bad_rows);
     }
+    r.surface = -1.0f;
+    if (p.surface_ids) r.surface = load_checked_plane(receivers, p.receivers, 6, x, y, bad_rows);
     return r;
 }
 
@@ -179,6 +194,7 @@ typedef struct {
     float vx, vy, vz;  /* the vertex */
     pn_float estimate; /* D_k, or -1 */
     pn_float limit;    /* |P - V_k| minus the bias */
+    pn_float other_limit; /* |P - V_k| minus other_bias_texels: for another surface's layers (surface ids) */
     pn_float bias;     /* the bias there, texels */
     pn_mask p_inside;  /* P lands in map k */
     pn_mask own;       /* P's own solid occludes V_k (its surface faces away from it) */
@@ -197,31 +213,60 @@ PN_FN PismoCorner pismo_corner(PN_GLOBAL const float* cameras, PN_GLOBAL const f
     k.bias = pismo_bias(cameras, p, map, r);
     const PismoLanding at = pismo_land(cameras, p, map, r.p, k.bias);
     k.limit = at.limit;
+    k.other_limit = pismo_land(cameras, p, map, r.p, p.other_bias_texels).limit;
     k.p_inside = at.inside;
     k.own = pn_and(pismo_has_normal(r), pismo_facing(r, k.vx, k.vy, k.vz) <= 0.0f);
     return k;
 }
 
+/* With surface ids, whether a layer of another surface than the receiver's
+ * lies nearer than other_limit among the layers [i, end): the layers are
+ * increasing, so the walk stops at the first one at or past it. */
+PN_FN pn_mask pismo_other_surface_nearer(PN_GLOBAL const float* depths, PN_GLOBAL const float* ids, PismoParams p,
+                                         pn_int i, pn_int end, pn_mask active, pn_float other_limit, pn_float own)
+{
+    pn_mask found = pn_and(active, pn_not(active));
+    active = pn_and(active, pn_iless(i, end));
+    while (pn_any(active)) {
+        const pn_int at = pn_imin(i, p.last_depth);
+        active = pn_and(active, pn_gather(depths, at) < other_limit);
+        const pn_float id = pn_gather(ids, at);
+        found = pn_or(found, pn_and(active, pn_or(id < own, id > own)));
+        active = pn_and(active, pn_not(found));
+        i = pn_iselect(active, i + 1, i);
+        active = pn_and(active, pn_iless(i, end));
+    }
+    return found;
+}
+
 /* o_k: whether test map k holds, at o's pixel, a layer nearer than P's limit
  * there (its nearest layer is enough: any nearer layer implies it), or P's
- * own solid occludes V_k. */
-PN_FN pn_mask pismo_occludes(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
-                             PN_GLOBAL const float* cameras, PismoParams p, PismoCorner k, PismoPoint o)
+ * own solid occludes V_k. With P's surface id, a layer of another surface
+ * nearer than the other limit instead. */
+PN_FN pn_mask pismo_occludes(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths, PN_GLOBAL const float* ids,
+                             PN_GLOBAL const float* cameras, PismoParams p, PismoCorner k, PismoPoint o,
+                             pn_float surface)
 {
     const PismoLanding at = pismo_land(cameras, p, k.map, o, k.bias);
     pn_uint first, second;
     pn_ugather_pair(offsets, at.pixel, &first, &second);
     const pn_int begin = pn_uint_to_index(first);
+    const pn_int end = pn_uint_to_index(second);
     const pn_float front = pn_gather(depths, pn_imin(begin, p.last_depth));
-    const pn_mask holds = pn_and(pn_and(at.inside, k.p_inside), pn_iless(begin, pn_uint_to_index(second)));
-    return pn_or(k.own, pn_and(holds, front < k.limit));
+    const pn_mask valid = pn_and(at.inside, k.p_inside);
+    const pn_mask by_depth = pn_and(pn_and(valid, pn_iless(begin, end)), front < k.limit);
+    if (!p.surface_ids) return pn_or(k.own, by_depth);
+    const pn_mask known = surface >= 0.0f;
+    const pn_mask by_id = pismo_other_surface_nearer(depths, ids, p, begin, end, pn_and(valid, known), k.other_limit,
+                                                     surface);
+    return pn_or(k.own, pn_or(pn_and(known, by_id), pn_and(pn_not(known), by_depth)));
 }
 
 /* The lit share of one ray, sum of w_k (1 - o_k), weights w (uniform: the
  * pattern is the same for every receiver, so L_i is too). */
 PN_FN pn_float pismo_ray_light(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
-                                   PN_GLOBAL const float* cameras, PismoParams p, const PismoCorner* k,
-                                   PN_GLOBAL const float* w, PismoReceiver r)
+                                   PN_GLOBAL const float* ids, PN_GLOBAL const float* cameras, PismoParams p,
+                                   const PismoCorner* k, PN_GLOBAL const float* w, PismoReceiver r)
 {
     const PismoPoint q = r.p;
     const float lx = w[0] * k[0].vx + w[1] * k[1].vx + w[2] * k[2].vx;
@@ -245,7 +290,8 @@ PN_FN pn_float pismo_ray_light(PN_GLOBAL const uint* offsets, PN_GLOBAL const fl
      * answer, renormalised; with none left the ray is lit. */
     pn_float lit = 0.0f, answering = 0.0f;
     for (int j = 0; j < 3; ++j) {
-        lit = lit + pn_select(pn_or(k[j].own, pismo_occludes(offsets, depths, cameras, p, k[j], o)), 0.0f, w[j]);
+        lit = lit + pn_select(pn_or(k[j].own, pismo_occludes(offsets, depths, ids, cameras, p, k[j], o, r.surface)),
+                              0.0f, w[j]);
         answering = answering + pn_select(k[j].own, 0.0f, w[j]);
     }
     const float all = (0.0f + w[0]) + w[1] + w[2];
@@ -256,7 +302,7 @@ PN_FN pn_float pismo_ray_light(PN_GLOBAL const uint* offsets, PN_GLOBAL const fl
 }
 
 PN_KERNEL void pismo_visibility(PN_GLOBAL const uint* offsets, PN_GLOBAL const float* depths,
-                                PN_GLOBAL const float* cameras, PN_GLOBAL const uint* triangles,
+                                PN_GLOBAL const float* ids, PN_GLOBAL const float* cameras, PN_GLOBAL const uint* triangles,
                                 PN_GLOBAL const float* rays, PN_GLOBAL const float* estimates,
                                 PN_GLOBAL const float* receivers, PN_GLOBAL float* out, PN_GLOBAL int* bad_rows,
                                 const PismoParams p, PN_PIXEL_ARGS)
@@ -274,7 +320,7 @@ PN_KERNEL void pismo_visibility(PN_GLOBAL const uint* offsets, PN_GLOBAL const f
         for (int j = 0; j < 3; ++j) k[j] = pismo_corner(cameras, estimates, p, (int)tri[j], q, pn_x, pn_y);
         for (int r = (int)tri[3]; r < (int)tri[4]; ++r) {
             PN_GLOBAL const float* w = rays + PN_PISMO_RAY_FLOATS * r;
-            lit = lit + w[3] * pismo_ray_light(offsets, depths, cameras, p, k, w, q);
+            lit = lit + w[3] * pismo_ray_light(offsets, depths, ids, cameras, p, k, w, q);
             total = total + w[3] * (((0.0f + w[0]) + w[1]) + w[2]);
         }
     }

@@ -75,14 +75,40 @@ void check_maps(const std::vector<std::array<double, 3>>& vertices, const std::v
 
 void check_receivers(const Image& receivers, const Image& out)
 {
-    require((receivers.channels() == 3 || receivers.channels() == 6) && !receivers.empty(), kOperation, "receivers",
-            "the receivers need channels x, y, z, world positions, and optionally then the normal's x, y, z (got " +
+    const int channels = receivers.channels();
+    require((channels == 3 || channels == 6 || channels == 7) && !receivers.empty(), kOperation, "receivers",
+            "the receivers need channels x, y, z, world positions, and optionally then the normal's x, y, z and "
+            "then the surface id (got " +
                 std::to_string(receivers.channels()) +
                 " channels, " + std::to_string(receivers.width()) + "x" + std::to_string(receivers.height()) + ")");
     require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), kOperation,
             "out",
             "the output must be a 1-channel image of the receivers' size (" + std::to_string(receivers.width()) + "x" +
                 std::to_string(receivers.height()) + ")");
+}
+
+// Surface ids, when given: one list a map, one id a layer, each in range; not
+// with the maximum-depth maps.
+void check_surface_ids(const std::vector<LayeredDepthMap>& maps, PismoDepths depths,
+                       const std::vector<std::vector<std::int32_t>>& ids)
+{
+    if (ids.empty()) return;
+    const auto refuse_unless = [](bool condition, const std::string& message) {
+        require(condition, kOperation, "surface-ids", message);
+    };
+    refuse_unless(depths == PismoDepths::Layered,
+                  "the maximum-depth maps keep one depth a pixel, no surface's crossing: give no surface ids");
+    refuse_unless(ids.size() == maps.size(), "there are " + std::to_string(ids.size()) + " lists of surface ids for " +
+                                                 std::to_string(maps.size()) + " maps; give one a map, or none");
+    for (std::size_t j = 0; j < ids.size(); ++j) {
+        refuse_unless(ids[j].size() == maps[j].depths().size(),
+                      "map " + std::to_string(j) + " has " + std::to_string(maps[j].depths().size()) +
+                          " layers but " + std::to_string(ids[j].size()) + " surface ids; give one id a layer");
+        for (std::size_t l = 0; l < ids[j].size(); ++l)
+            refuse_unless(ids[j][l] >= 0 && ids[j][l] <= kPismoMaxSurfaceId,
+                          "map " + std::to_string(j) + ", layer " + std::to_string(l) + ": surface id " +
+                              std::to_string(ids[j][l]) + " is outside [0, " + std::to_string(kPismoMaxSurfaceId) + "]");
+    }
 }
 
 // Rows y0 .. y0 + rows - 1 of the receivers' planes (positions, and normals if given).
@@ -102,8 +128,9 @@ struct Prepared {
     PismoParams params{};
 };
 
-Prepared prepare(const PismoMaps& maps, detail::PismoRayTable rays, float bias_texels, bool normals)
+Prepared prepare(const PismoMaps& maps, detail::PismoRayTable rays, float bias_texels, int receiver_channels)
 {
+    const bool normals = receiver_channels >= 6;
     Prepared s{*maps.arrays(), std::move(rays), PismoParams{}};
     s.params.map_width = s.maps.width;
     s.params.map_height = s.maps.height;
@@ -112,6 +139,8 @@ Prepared prepare(const PismoMaps& maps, detail::PismoRayTable rays, float bias_t
     s.params.bias_texels = bias_texels;
     s.params.normals = normals ? 1 : 0;
     s.params.max_slope = kPismoMaxSlopeTexels;
+    s.params.surface_ids = receiver_channels == 7 && maps.has_surface_ids() ? 1 : 0;
+    s.params.other_bias_texels = kPismoOtherSurfaceBiasTexels;
     return s;
 }
 
@@ -134,7 +163,8 @@ void shade_chunk(detail::BackendImpl& backend, const Prepared& s, const Image& c
     const std::span<const float> estimate_values(estimates.plane(0), estimates.plane_pitch());
     detail::receiver_lookup<detail::KernelId::pismo_visibility>(
         backend,
-        detail::LookupSource({std::span(test.offsets), std::span(test.depths), std::span(s.maps.cameras),
+        detail::LookupSource({std::span(test.offsets), std::span(test.depths), std::span(s.maps.test_ids),
+                              std::span(s.maps.cameras),
                               std::span(s.rays.triangles), std::span(s.rays.rays), estimate_values}),
         chunk, p, shaded, bad_rows);
 }
@@ -142,11 +172,14 @@ void shade_chunk(detail::BackendImpl& backend, const Prepared& s, const Image& c
 }  // namespace
 
 PismoMaps::PismoMaps(std::vector<std::array<double, 3>> vertices, std::vector<std::array<int, 3>> triangles,
-                     const std::vector<LayeredDepthMap>& maps, PismoDepths depths)
-    : vertices_(std::move(vertices)), triangles_(std::move(triangles)), depths_(depths)
+                     const std::vector<LayeredDepthMap>& maps, PismoDepths depths,
+                     const std::vector<std::vector<std::int32_t>>& surface_ids)
+    : vertices_(std::move(vertices)), triangles_(std::move(triangles)), depths_(depths),
+      has_surface_ids_(!surface_ids.empty())
 {
     check_mesh(vertices_, triangles_);
     check_maps(vertices_, maps);
+    check_surface_ids(maps, depths, surface_ids);
     auto arrays = std::make_shared<detail::PismoArrays>();
     arrays->width = maps.front().width();
     arrays->height = maps.front().height();
@@ -163,6 +196,9 @@ PismoMaps::PismoMaps(std::vector<std::array<double, 3>> vertices, std::vector<st
     }
     detail::close_layers(arrays->test);
     detail::close_layers(arrays->bled);
+    for (const std::vector<std::int32_t>& ids : surface_ids) arrays->test_ids.insert(arrays->test_ids.end(), ids.begin(), ids.end());
+    if (arrays->test_ids.empty()) arrays->test_ids.push_back(-1.0f);  // the kernel's stand-in element
+    arrays->test_ids.shrink_to_fit();
     arrays_ = std::move(arrays);
 }
 
@@ -202,7 +238,7 @@ void detail::pismo_shade_rays(Context& context, const PismoMaps& maps, PismoRayT
 {
     require_maps(!maps.empty(), "no maps: build PismoMaps from a light mesh and its vertices' layered maps first");
     check_receivers(receivers, out);
-    const Prepared s = prepare(maps, std::move(rays), bias_texels, receivers.channels() == 6);
+    const Prepared s = prepare(maps, std::move(rays), bias_texels, receivers.channels());
     const std::size_t row_bytes = sizeof(float) * std::size_t(receivers.width()) * std::size_t(s.params.maps);
     const int rows = int(std::clamp<std::size_t>(estimate_bytes / row_bytes, 1, std::size_t(receivers.height())));
     for (int y0 = 0; y0 < receivers.height(); y0 += rows) {

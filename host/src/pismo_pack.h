@@ -20,6 +20,9 @@ struct PismoLayers {
 struct PismoArrays {
     int width = 0, height = 0;           // of every map
     PismoLayers test, bled;              // the maps the test reads, and their bled copies
+    // Parallel to test.depths: each layer's surface id (a float: ids below
+    // kPismoMaxSurfaceId are exact), or one stand-in -1 without ids.
+    std::vector<float> test_ids;
     std::vector<float> cameras;          // PN_PISMO_CAMERA_FLOATS a map
     std::vector<MapCamera> exact_cameras;
 };

@@ -83,8 +83,10 @@ void check(const LayeredMapOptions& o)
     require(o.prune >= 0 && o.prune <= 0.1, kOperation, "prune", "the pruning distance must be in [0, 0.1] (a fraction of the depth)");
 }
 
-// The kept depths along one ray (unit direction: t is the distance).
-void trace_layers(const PreparedScene& casters, const Ray& ray, const LayeredMapOptions& o, std::vector<float>& out)
+// The kept depths along one ray (unit direction: t is the distance), and the
+// caster each kept layer crosses (a pruned crossing keeps the kept layer's).
+void trace_layers(const PreparedScene& casters, const Ray& ray, const LayeredMapOptions& o, std::vector<float>& out,
+                  std::vector<std::int32_t>& crossed)
 {
     const std::size_t first = out.size();
     double t = 0;
@@ -94,7 +96,10 @@ void trace_layers(const PreparedScene& casters, const Ray& ray, const LayeredMap
         t = hit->t;
         const float depth = float(t);
         if (!(depth > 0)) continue;  // at the camera itself: no distance to store
-        if (out.size() == first || (t - out.back() > o.prune * t && depth > out.back())) out.push_back(depth);
+        if (out.size() == first || (t - out.back() > o.prune * t && depth > out.back())) {
+            out.push_back(depth);
+            crossed.push_back(hit->primitive);
+        }
     }
 }
 
@@ -133,14 +138,22 @@ MapCamera camera_holding(const Scene& scene, Vec3 vertex, Vec3 fixation, const s
 
 }  // namespace
 
+std::vector<int> pismo_caster_surfaces(const Scene& scene)
+{
+    std::vector<int> kept;
+    const std::vector<Primitive> surfaces = scene_surfaces(scene);
+    for (std::size_t i = 0; i < surfaces.size(); ++i) {
+        const auto* plane = std::get_if<Plane>(&surfaces[i]);
+        if (!plane || plane_holds_light(*plane, scene.light)) kept.push_back(int(i));
+    }
+    return kept;
+}
+
 std::vector<Primitive> pismo_casters(const Scene& scene)
 {
+    const std::vector<Primitive> surfaces = scene_surfaces(scene);
     std::vector<Primitive> casters;
-    for (const Primitive& surface : scene_surfaces(scene)) {
-        const auto* plane = std::get_if<Plane>(&surface);
-        if (plane && !plane_holds_light(*plane, scene.light)) continue;
-        casters.push_back(surface);
-    }
+    for (int i : pismo_caster_surfaces(scene)) casters.push_back(surfaces[std::size_t(i)]);
     return casters;
 }
 
@@ -190,7 +203,7 @@ std::vector<Vec3> receiver_region(const Receivers& rx)
 }
 
 LayeredDepthMap render_layered_depth_map(const PreparedScene& casters, const MapCamera& camera,
-                                         const LayeredMapOptions& options)
+                                         const LayeredMapOptions& options, std::vector<std::int32_t>* crossed)
 {
     check(options);
     const int n = options.size;
@@ -198,6 +211,7 @@ LayeredDepthMap render_layered_depth_map(const PreparedScene& casters, const Map
                forward = to_vec(camera.forward);
     struct Row {
         std::vector<float> depths;
+        std::vector<std::int32_t> crossed;
         std::vector<std::uint32_t> counts;
     };
     std::vector<Row> rows(static_cast<std::size_t>(n));
@@ -208,13 +222,16 @@ LayeredDepthMap render_layered_depth_map(const PreparedScene& casters, const Map
             for (int i = 0; i < n; ++i) {
                 const double x = (2 * (i + 0.5) / n - 1) * camera.tan_half_fov;
                 const std::size_t before = row.depths.size();
-                trace_layers(casters, {origin, normalize(forward + right * x + down * y)}, options, row.depths);
+                trace_layers(casters, {origin, normalize(forward + right * x + down * y)}, options, row.depths,
+                             row.crossed);
                 row.counts.push_back(std::uint32_t(row.depths.size() - before));
             }
         }
     });
     LayeredDepthMapBuilder builder(n, n, camera);
+    if (crossed) crossed->clear();
     for (const Row& row : rows) {
+        if (crossed) crossed->insert(crossed->end(), row.crossed.begin(), row.crossed.end());
         std::size_t at = 0;
         for (std::uint32_t count : row.counts) {
             builder.add_pixel(std::span(row.depths).subspan(at, count));
@@ -229,16 +246,19 @@ PismoMaps render_pismo_maps(const Scene& scene, int level, const LayeredMapOptio
 {
     validate_scene(scene, kOperation);
     check(options);
-    PismoMaps out{light_mesh(scene.light, level), pismo_fixation_point(scene), {}};
+    PismoMaps out{light_mesh(scene.light, level), pismo_fixation_point(scene), {}, {}};
+    const std::vector<int> surface_of = pismo_caster_surfaces(scene);
     const PreparedScene casters(pismo_casters(scene));
     out.maps.reserve(out.mesh.vertices.size());
     for (std::size_t j = 0; j < out.mesh.vertices.size(); ++j) {
         const Vec3 vertex = out.mesh.vertices[j];
         const SubTexelShift shift = options.shift_grids ? pismo_subtexel_shift(int(j), options.size) : SubTexelShift{};
+        std::vector<std::int32_t>& ids = out.surface_ids.emplace_back();
         out.maps.push_back(render_layered_depth_map(
             casters, region.empty() ? pismo_vertex_camera(scene, vertex, out.fixation, shift)
                                     : pismo_fitted_camera(scene, vertex, out.fixation, region, shift),
-            options));
+            options, &ids));
+        for (std::int32_t& id : ids) id = surface_of[std::size_t(id)];
     }
     return out;
 }

@@ -65,8 +65,19 @@ private:
 
 Receivers Receivers::allocate(int width, int height)
 {
-    return {Image(width, height, 3), Image(width, height, 3), Image(width, height, 3),
-            Image(width, height, 1), Image(width, height, 1), Image(width, height, 1)};
+    Receivers out{Image(width, height, 3), Image(width, height, 3), Image(width, height, 3),
+                  Image(width, height, 1), Image(width, height, 1), Image(width, height, 1), Image(width, height, 1)};
+    out.surface.fill(0, -1.0f);
+    return out;
+}
+
+Image Receivers::positions_normals_and_surface() const
+{
+    const Image six = positions_and_normals();
+    Image out(width(), height(), 7);
+    for (int c = 0; c < 7; ++c)
+        for (int y = 0; y < height(); ++y) std::copy_n((c < 6 ? six : surface).row(c < 6 ? c : 0, y), width(), out.row(c, y));
+    return out;
 }
 
 Image Receivers::positions_and_normals() const
@@ -105,6 +116,7 @@ Receivers render_receivers(const Scene& scene, int width, int height)
                 store3(out.normal, x, y, hit->normal);
                 out.view_depth.at(0, x, y) = float(hit->t);
                 out.hit.at(0, x, y) = 1;
+                out.surface.at(0, x, y) = float(hit->primitive);
                 out.mask.at(0, x, y) = in_unit_cube(uvz) ? 1.0f : 0.0f;
             }
     });

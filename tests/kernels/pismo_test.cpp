@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <string>
 #include <vector>
@@ -149,6 +150,50 @@ PN_BACKEND_TEST(Pismo, WithNormalsAgreesWithTheFloat64ReferenceReceiverByReceive
         EXPECT_LE(flipped, kMaxFlippedShare * rx6.width() * rx6.height()) << what << ", worst " << worst;
         EXPECT_LE(worst, 0.05) << what;
         expect_in_unit_range(got, what);
+    }
+}
+
+// The same with surface ids (kernels/pismo.h; docs/pismo.md, "A surface id
+// per layer"): a layer of the receiver's own surface never occludes it, any
+// other with a bias of 1 texel. On fence the ids change the answer most (the
+// pickets under the rails), so it is tested beside contact and overlap.
+// Receivers with the 7th plane and maps without ids shade as with 6 planes.
+PN_BACKEND_TEST(Pismo, WithSurfaceIdsAgreesWithTheFloat64ReferenceReceiverByReceiver)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    for (const char* name : {"fence", "contact", "overlap"}) {
+        const Case& c = scene_case(name, 1);
+        const auto ref = testing::PismoReferenceMaps::layered(c.maps);
+        const Image rx7 = c.receivers.positions_normals_and_surface();
+        PismoOptions o;
+        o.rays = 48;
+        const Image got = pismo_shade(ctx, library_maps(c.maps, PismoDepths::Layered, true), rx7, o);
+        testing::PismoReferenceOptions ro;
+        ro.rays = o.rays;
+        ro.max_slope = kPismoMaxSlopeTexels;
+        ro.surface_ids = true;
+        ro.other_bias_texels = kPismoOtherSurfaceBiasTexels;
+        int flipped = 0, changed = 0;
+        double worst = 0;
+        for (int y = 0; y < rx7.height(); ++y)
+            for (int x = 0; x < rx7.width(); ++x) {
+                const int surface = int(rx7.at(6, x, y));
+                const double want =
+                    testing::pismo_visibility(ref, position(rx7, x, y), ro, normal_of(rx7, x, y), surface);
+                const double d = std::abs(got.at(0, x, y) - want);
+                flipped += d > kAgree;
+                worst = std::max(worst, d);
+                changed += std::abs(want - testing::pismo_visibility(ref, position(rx7, x, y), ro, normal_of(rx7, x, y))) > 0.01;
+            }
+        const std::string what = std::string(name) + " with surface ids on " + backend;
+        EXPECT_LE(flipped, kMaxFlippedShare * rx7.width() * rx7.height()) << what << ", worst " << worst;
+        EXPECT_LE(worst, 0.05) << what;
+        expect_in_unit_range(got, what);
+        if (std::string(name) == "fence") EXPECT_GT(changed, 10) << "the ids change fence's answer";
+        const Image without = pismo_shade(ctx, library_maps(c.maps), rx7, o);
+        const Image six = pismo_shade(ctx, library_maps(c.maps), c.receivers.positions_and_normals(), o);
+        EXPECT_EQ(0, std::memcmp(without.plane(0), six.plane(0), sizeof(float) * std::size_t(six.plane_pitch())))
+            << what << ": maps without ids ignore the 7th plane";
     }
 }
 
@@ -351,35 +396,38 @@ PN_BACKEND_TEST(Pismo, ShiftedGridsLetThinSlatsConvergeToTheClosedForm)
 PN_BACKEND_TEST(Pismo, OddSizesAndChunksGiveTheWholeImagesValues)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    const Case& c = scene_case("contact", 0);
-    const PismoMaps maps = library_maps(c.maps);
-    const Image& world = c.receivers.world_position;
-    PismoOptions o;
-    o.rays = 16;
-    const Image whole = pismo_shade(ctx, maps, world, o);
-    expect_in_unit_range(whole, "whole");
-    std::vector<int> widths = testing::lane_edge_widths();
-    widths.push_back(7);
-    for (int w : widths)
-        for (int h : {1, 3}) {
-            if (w > world.width()) continue;
-            const int x0 = 5 % (world.width() - w + 1);
-            Image crop(w, h, 3);
-            for (int ch = 0; ch < 3; ++ch)
+    // Positions only, and fence with normals and surface ids (the layer walk).
+    for (const bool ids : {false, true}) {
+        const Case& c = scene_case(ids ? "fence" : "contact", 0);
+        const PismoMaps maps = library_maps(c.maps, PismoDepths::Layered, ids);
+        const Image world = ids ? c.receivers.positions_normals_and_surface() : c.receivers.world_position;
+        PismoOptions o;
+        o.rays = 16;
+        const Image whole = pismo_shade(ctx, maps, world, o);
+        expect_in_unit_range(whole, "whole");
+        std::vector<int> widths = testing::lane_edge_widths();
+        widths.push_back(7);
+        for (int w : widths)
+            for (int h : {1, 3}) {
+                if (w > world.width()) continue;
+                const int x0 = 5 % (world.width() - w + 1);
+                Image crop(w, h, world.channels());
+                for (int ch = 0; ch < world.channels(); ++ch)
+                    for (int y = 0; y < h; ++y)
+                        for (int x = 0; x < w; ++x) crop.at(ch, x, y) = world.at(ch, x + x0, y + 10);
+                const Image got = pismo_shade(ctx, maps, crop, o);
                 for (int y = 0; y < h; ++y)
-                    for (int x = 0; x < w; ++x) crop.at(ch, x, y) = world.at(ch, x + x0, y + 10);
-            const Image got = pismo_shade(ctx, maps, crop, o);
-            for (int y = 0; y < h; ++y)
-                for (int x = 0; x < w; ++x)
-                    EXPECT_EQ(got.at(0, x, y), whole.at(0, x + x0, y + 10))
-                        << w << "x" << h << " at " << x << ", " << y << " on " << backend;
-        }
-    // One row a chunk: the estimates of 4 maps of one row are 4 W floats.
-    Image chunked(world.width(), world.height(), 1);
-    detail::pismo_shade_rays(ctx, maps, detail::pismo_ray_table(maps.vertices(), maps.triangles(), o.rays),
-                             o.bias_texels, world, chunked, 1);
-    for (int y = 0; y < world.height(); ++y)
-        for (int x = 0; x < world.width(); ++x) ASSERT_EQ(chunked.at(0, x, y), whole.at(0, x, y)) << x << ", " << y;
+                    for (int x = 0; x < w; ++x)
+                        EXPECT_EQ(got.at(0, x, y), whole.at(0, x + x0, y + 10))
+                            << w << "x" << h << " at " << x << ", " << y << " on " << backend << (ids ? ", ids" : "");
+            }
+        // One row a chunk: the estimates of 4 maps of one row are 4 W floats.
+        Image chunked(world.width(), world.height(), 1);
+        detail::pismo_shade_rays(ctx, maps, detail::pismo_ray_table(maps.vertices(), maps.triangles(), o.rays),
+                                 o.bias_texels, world, chunked, 1);
+        for (int y = 0; y < world.height(); ++y)
+            for (int x = 0; x < world.width(); ++x) ASSERT_EQ(chunked.at(0, x, y), whole.at(0, x, y)) << x << ", " << y;
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Pismo, ::testing::ValuesIn(backend_names()), backend_test_name);
@@ -479,6 +527,19 @@ TEST_F(PismoBadInput, MapsAndMeshThatDisagree)
     std::vector<LayeredDepthMap> empty(maps.size());
     refused([&] { PismoMaps(vertices(), tris, empty); }, "has no pixels");
     refused([&] { pismo_shade(ctx, PismoMaps(), c.receivers.world_position); }, "no maps");
+    const auto& ids = c.maps.surface_ids;
+    refused([&] { PismoMaps(vertices(), tris, maps, PismoDepths::Layered, {ids.begin(), ids.end() - 1}); },
+            "lists of surface ids");
+    const std::size_t j = std::size_t(std::find_if(ids.begin(), ids.end(), [](const auto& l) { return !l.empty(); }) -
+                                      ids.begin());
+    ASSERT_LT(j, ids.size()) << "a map with layers";
+    auto short_list = ids;
+    short_list[j].pop_back();
+    refused([&] { PismoMaps(vertices(), tris, maps, PismoDepths::Layered, short_list); }, "give one id a layer");
+    auto negative = ids;
+    negative[j][0] = -3;
+    refused([&] { PismoMaps(vertices(), tris, maps, PismoDepths::Layered, negative); }, "surface id -3");
+    refused([&] { PismoMaps(vertices(), tris, maps, PismoDepths::MaximumDepth, ids); }, "give no surface ids");
 }
 
 TEST_F(PismoBadInput, ReceiversAndOutput)

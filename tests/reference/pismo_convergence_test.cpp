@@ -45,15 +45,20 @@ Scores score(const Scene& scene, const Receivers& rx, const Image& truth, int le
     return {rmse(pismo, truth, &rx.mask), rmse(averaged, truth, &rx.mask), rmse(maximum, truth, &rx.mask)};
 }
 
+Image truth_at_16_strata(const Scene& scene, const Receivers& rx)
+{
+    GroundTruthOptions go;
+    go.strata = 16;
+    return ground_truth(scene, rx, go);
+}
+
 // Slow (12 s of CPU): main job only, not under the sanitizers.
 TEST(PismoConvergenceSlow, BeatsAveragedHardShadowsAndMeetsTheMapsFloor)
 {
     for (const char* name : {"contact", "overlap"}) {
         const Scene scene = builtin_scene(name);
         const Receivers rx = render_receivers(scene, 64, 48);
-        GroundTruthOptions go;
-        go.strata = 16;
-        const Image truth = ground_truth(scene, rx, go);
+        const Image truth = truth_at_16_strata(scene, rx);
         double last_pismo = 1;
         for (int level = 0; level <= 3; ++level) {
             const Scores s = score(scene, rx, truth, level, 384, 256);
@@ -89,9 +94,7 @@ TEST(PismoConvergence, WithTheReceiversOwnSurfaceFallsWithTheLevelAndBeatsTheAve
     for (const char* name : {"contact", "overlap"}) {
         const Scene scene = builtin_scene(name);
         const Receivers rx = render_receivers(scene, 32, 24);
-        GroundTruthOptions go;
-        go.strata = 16;
-        const Image truth = ground_truth(scene, rx, go);
+        const Image truth = truth_at_16_strata(scene, rx);
         LayeredMapOptions mo;
         mo.size = 256;
         testing::PismoReferenceOptions po;
@@ -112,6 +115,43 @@ TEST(PismoConvergence, WithTheReceiversOwnSurfaceFallsWithTheLevelAndBeatsTheAve
                 EXPECT_LT(pismo, 0.7 * first) << name;
             }
             last = pismo;
+        }
+    }
+}
+
+// Surface ids (docs/pismo.md, "A surface id per layer"): a layer of P's own
+// surface never occludes P, any other with a bias of 1 texel instead of 2
+// plus the slope term. On fence that closes the two leaks the bias made: the
+// picket sides under the rails (a rail 1 to 3 cm in front, within the slope
+// term's 10 texels) and the contact strip at the fence's foot. The truth is
+// the judge; contact and overlap must not get worse.
+TEST(PismoConvergence, SurfaceIdsCloseFencesBiasLeaksAndCostTheOthersNothing)
+{
+    for (const char* name : {"fence", "contact", "overlap"}) {
+        const bool fence = std::string(name) == "fence";
+        const Scene scene = builtin_scene(name);
+        const Receivers rx = render_receivers(scene, 64, 48);
+        const Image truth = truth_at_16_strata(scene, rx);
+        LayeredMapOptions mo;
+        mo.size = fence ? 512 : 256;
+        const PismoMaps maps = render_pismo_maps(scene, 1, mo, receiver_region(rx));
+        testing::PismoReferenceOptions po;
+        po.rays = 64;
+        const Image before = testing::pismo_estimates(maps, rx, po, true).pismo;
+        po.surface_ids = true;
+        const Image after = testing::pismo_estimates(maps, rx, po, true).pismo;
+        const Image ground = testing::receivers_on_planes(scene, rx, true),
+                    casters = testing::receivers_on_planes(scene, rx, false);
+        const double ground_before = rmse(before, truth, &ground), ground_after = rmse(after, truth, &ground),
+                     casters_before = rmse(before, truth, &casters), casters_after = rmse(after, truth, &casters);
+        std::printf("%-8s ground %.4f -> %.4f  casters %.4f -> %.4f\n", name, ground_before, ground_after,
+                    casters_before, casters_after);
+        if (fence) {
+            EXPECT_LT(casters_after, 0.3 * casters_before) << "the picket sides under the rails";
+            EXPECT_LT(ground_after, 0.85 * ground_before) << "the contact strip at the fence's foot";
+        } else {
+            EXPECT_LT(casters_after, casters_before + 5e-4) << name;
+            EXPECT_LT(ground_after, ground_before + 5e-4) << name;
         }
     }
 }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -260,6 +261,61 @@ TEST(LayeredDepthRender, BadOptionsNameTheOption)
                  ErrorCategory::InvalidArgument, "pismo_maps", "layers per pixel");
     expect_error([&] { render_layered_depth_map(empty, looking_along_z(1), options(4, 8, -1)); },
                  ErrorCategory::InvalidArgument, "pismo_maps", "pruning");
+}
+
+// The distance from p to one surface.
+double distance_to(const Primitive& surface, Vec3 p) { return distance_to_a_surface({surface}, p); }
+
+// Surface ids (docs/pismo.md, "A surface id per layer"): on fence, where the
+// rails touch the pickets' backs, each layer lies on the surface its id names,
+// a caster (not the ground, which the maps leave out); each receiver on its own.
+TEST(PismoMaps, EachLayerAndReceiverNamesTheSurfaceItLiesOn)
+{
+    const Scene scene = builtin_scene("fence");
+    const std::vector<Primitive> surfaces = scene_surfaces(scene);
+    const std::vector<int> casters = pismo_caster_surfaces(scene);
+    ASSERT_EQ(casters.size(), surfaces.size() - 1) << "every surface but the ground";
+    EXPECT_EQ(casters.front(), 1);
+    const PismoMaps maps = render_pismo_maps(scene, 0, options(40));
+    ASSERT_EQ(maps.surface_ids.size(), maps.maps.size());
+    std::size_t layers = 0;
+    for (std::size_t k = 0; k < maps.maps.size(); ++k) {
+        const LayeredDepthMap& map = maps.maps[k];
+        ASSERT_EQ(maps.surface_ids[k].size(), map.depths().size());
+        layers += map.depths().size();
+        const MapCamera& c = map.camera();
+        const Vec3 o{c.position[0], c.position[1], c.position[2]}, r{c.right[0], c.right[1], c.right[2]},
+                   dn{c.down[0], c.down[1], c.down[2]}, f{c.forward[0], c.forward[1], c.forward[2]};
+        for (int j = 0; j < map.height(); ++j)
+            for (int i = 0; i < map.width(); ++i) {
+                const double x = (2 * (i + 0.5) / map.width() - 1) * c.tan_half_fov,
+                             y = (2 * (j + 0.5) / map.height() - 1) * c.tan_half_fov;
+                const Vec3 dir = normalize(f + r * x + dn * y);
+                const std::size_t pixel = std::size_t(j) * std::size_t(map.width()) + std::size_t(i);
+                for (std::uint32_t l = map.offsets()[pixel]; l < map.offsets()[pixel + 1]; ++l) {
+                    const int id = maps.surface_ids[k][l];
+                    ASSERT_TRUE(std::find(casters.begin(), casters.end(), id) != casters.end()) << id;
+                    const double d = map.depths()[l];
+                    EXPECT_LT(distance_to(surfaces[std::size_t(id)], o + dir * d), 4e-6 * d) << k << ": " << i << ", " << j;
+                }
+            }
+    }
+    EXPECT_GT(layers, 100u) << "the maps see the fence";
+    const Receivers rx = render_receivers(scene, 33, 19);
+    int on_casters = 0;
+    for (int y = 0; y < rx.height(); ++y)
+        for (int x = 0; x < rx.width(); ++x) {
+            const int id = int(rx.surface.at(0, x, y));
+            if (rx.hit.at(0, x, y) == 0) {
+                EXPECT_EQ(id, -1);
+                continue;
+            }
+            ASSERT_TRUE(id >= 0 && id < int(surfaces.size())) << id;
+            const Vec3 p{rx.world_position.at(0, x, y), rx.world_position.at(1, x, y), rx.world_position.at(2, x, y)};
+            EXPECT_LT(distance_to(surfaces[std::size_t(id)], p), 1e-5) << x << ", " << y;  // positions are floats
+            on_casters += id > 0;
+        }
+    EXPECT_GT(on_casters, 20) << "the view sees the pickets";
 }
 
 TEST(PismoMaps, OneMapPerVertex)

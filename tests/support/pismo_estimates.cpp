@@ -24,9 +24,10 @@ PismoEstimates pismo_estimates(const reference::PismoMaps& maps, const reference
                 const reference::Vec3 n = normals ? reference::Vec3{rx.normal.at(0, x, y), rx.normal.at(1, x, y),
                                                                     rx.normal.at(2, x, y)}
                                                   : reference::Vec3{};
-                out.pismo.at(0, x, y) = float(pismo_visibility(layered, p, options, n));
-                out.maximum_depth.at(0, x, y) = float(pismo_visibility(farthest, p, options, n));
-                out.averaged.at(0, x, y) = float(averaged_hard_shadows(layered, p, options, n));
+                const int surface = options.surface_ids ? int(rx.surface.at(0, x, y)) : -1;
+                out.pismo.at(0, x, y) = float(pismo_visibility(layered, p, options, n, surface));
+                out.maximum_depth.at(0, x, y) = float(pismo_visibility(farthest, p, options, n, surface));
+                out.averaged.at(0, x, y) = float(averaged_hard_shadows(layered, p, options, n, surface));
             }
     });
     return out;

@@ -19,7 +19,8 @@ struct PismoEstimates {
 
 // Every valid receiver (rx.mask), rows in parallel, each over the kernel's ray
 // pattern (support/pismo_reference.h): the result does not depend on the threads.
-// With `normals`, each receiver's own surface (rx.normal) takes part in the test.
+// With `normals`, each receiver's own surface (rx.normal) takes part in the test;
+// with options.surface_ids, its surface id (rx.surface) too.
 PismoEstimates pismo_estimates(const reference::PismoMaps& maps, const reference::Receivers& rx,
                                const PismoReferenceOptions& options, bool normals = false);
 

@@ -11,17 +11,18 @@
 namespace penumbra::testing {
 namespace {
 
+using reference::Ray;
 using reference::Vec3;
 
 Vec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 
-// Where p lands in a map: its pixel, its radial depth, and the bias there.
+// Where p lands in a map: its pixel, its radial depth, and a texel's footprint there.
 struct Landing {
     int x = 0, y = 0;
-    double depth = 0, bias = 0;
+    double depth = 0, texel = 0;
 };
 
-std::optional<Landing> land(const LayeredDepthMap& map, Vec3 p, double bias_texels)
+std::optional<Landing> land(const LayeredDepthMap& map, Vec3 p)
 {
     const MapCamera& c = map.camera();
     const Vec3 local = p - vec(c.position);
@@ -33,7 +34,7 @@ std::optional<Landing> land(const LayeredDepthMap& map, Vec3 p, double bias_texe
     if (!(x >= 0 && x < map.width() && y >= 0 && y < map.height())) return std::nullopt;
     const double depth = length(local);
     const double texel = 2 * c.tan_half_fov * depth / map.width();
-    return Landing{int(x), int(y), depth, bias_texels * texel};
+    return Landing{int(x), int(y), depth, texel};
 }
 
 // The receiver: its position, its normal (zero: unknown), the options, and
@@ -42,6 +43,7 @@ struct Receiver {
     Vec3 p, n;
     const PismoReferenceOptions& o;
     Vec3 at;
+    int surface = -1;  // P's surface id, -1 unknown
 
     bool has_normal() const { return dot(n, n) > 0; }
     bool lifted() const { return at.x != p.x || at.y != p.y || at.z != p.z; }
@@ -58,23 +60,63 @@ struct Receiver {
     }
 };
 
+// The depth limits of a hard test at P: a layer of P's own surface occludes
+// nearer than `own` (none with skip_own_layers), any other nearer than `other`.
+// Without ids (either side), every layer is P's own as far as the test knows.
+struct Limits {
+    double own, other;
+    int surface;  // P's id when the ids take part, else -1
+};
+
+Limits limits(const LayeredDepthMap& map, const Landing& at_p, std::span<const std::int32_t> ids, const Receiver& r)
+{
+    const double own = at_p.depth - r.bias_texels(map) * at_p.texel;
+    if (!(r.o.surface_ids && r.surface >= 0 && !ids.empty())) return {own, own, -1};
+    return {r.o.skip_own_layers ? -INFINITY : own, at_p.depth - r.o.other_bias_texels * at_p.texel, r.surface};
+}
+
+bool within(const Limits& l, double depth, int surface)
+{
+    return l.surface >= 0 && surface != l.surface ? depth < l.other : depth < l.own;
+}
+
+// The exact test along the ray from `vertex` through q: a caster crossing
+// within the limits (exact_casters' hits name surfaces as the ids do).
+bool exactly_occluded(Vec3 vertex, Vec3 q, const Limits& l, const Receiver& r)
+{
+    const Ray ray{vertex, normalize(q - vertex)};
+    if (l.surface < 0) return r.o.exact_casters->occluded(ray, 0, l.own);
+    for (double t = 0;;) {
+        const std::optional<reference::Hit> hit = r.o.exact_casters->closest_hit(ray, t, std::max(l.own, l.other));
+        if (!hit) return false;
+        if (within(l, hit->t, hit->primitive)) return true;
+        t = hit->t;
+    }
+}
+
 // Whether a layer of `map` at q's pixel lies nearer than P's depth (minus the
 // bias); P's own solid blocks a map whose vertex its surface faces away from.
 // With options.exact_tests, the ray from the map's vertex through q itself
 // answers (a caster nearer than the same limit), not the ray through the
 // centre of q's pixel.
-bool occludes(const LayeredDepthMap& map, Vec3 q, const Receiver& r)
+bool occludes(const LayeredDepthMap& map, std::span<const std::int32_t> ids, Vec3 q, const Receiver& r)
 {
     const Vec3 vertex = vec(map.camera().position);
     if (r.faces_away(vertex)) return true;
-    const double bias = r.bias_texels(map);
-    const std::optional<Landing> at_q = land(map, q, bias);
-    const std::optional<Landing> at_p = land(map, r.at, bias);
+    const std::optional<Landing> at_q = land(map, q);
+    const std::optional<Landing> at_p = land(map, r.at);
     if (!at_q || !at_p) return false;  // outside the map: no caster was seen there
-    const double limit = at_p->depth - at_p->bias;
-    if (r.o.exact_tests) return r.o.exact_casters->occluded({vertex, normalize(q - vertex)}, 0, limit);
-    const auto layers = map.layers(at_q->x, at_q->y);
-    return !layers.empty() && double(layers.front()) < limit;
+    const Limits l = limits(map, *at_p, ids, r);
+    if (r.o.exact_tests) return exactly_occluded(vertex, q, l, r);
+    const std::size_t pixel = std::size_t(at_q->y) * std::size_t(map.width()) + std::size_t(at_q->x);
+    for (std::uint32_t i = map.offsets()[pixel]; i < map.offsets()[pixel + 1]; ++i)
+        if (within(l, double(map.depths()[i]), l.surface < 0 ? -1 : ids[i])) return true;
+    return false;
+}
+
+std::span<const std::int32_t> ids_of(const PismoReferenceMaps& maps, std::size_t j)
+{
+    return maps.test_ids.empty() ? std::span<const std::int32_t>{} : std::span<const std::int32_t>(maps.test_ids[j]);
 }
 
 // With options.exact_estimate: the putative occluder of the ray to `light` is
@@ -94,11 +136,11 @@ Vec3 exact_occluder(Vec3 light, const Receiver& r)
 // than p (the occluder nearest p), if any.
 std::optional<double> nearest_occluder_depth(const LayeredDepthMap& bled, const Receiver& r)
 {
-    const std::optional<Landing> at = land(bled, r.at, r.bias_texels(bled));
+    const std::optional<Landing> at = land(bled, r.at);
     if (!at) return std::nullopt;
     std::optional<double> nearest;
     for (float layer : bled.layers(at->x, at->y))
-        if (double(layer) < at->depth - at->bias) nearest = double(layer);
+        if (double(layer) < at->depth - r.bias_texels(bled) * at->texel) nearest = double(layer);
     return nearest;
 }
 
@@ -126,24 +168,30 @@ bool hard_shadow_test(const LayeredDepthMap& map, Vec3 p, double bias_texels)
 {
     PismoReferenceOptions o;
     o.bias_texels = bias_texels;
-    return occludes(map, p, Receiver{p, {}, o, p});
+    return occludes(map, {}, p, Receiver{p, {}, o, p});
 }
 
 bool hard_shadow_test(const LayeredDepthMap& map, Vec3 p, Vec3 normal, const PismoReferenceOptions& options)
 {
-    return occludes(map, p, Receiver{p, normal, options, p});
+    return occludes(map, {}, p, Receiver{p, normal, options, p});
+}
+
+bool hard_shadow_test(const LayeredDepthMap& map, std::span<const std::int32_t> ids, Vec3 p, Vec3 normal, int surface,
+                      const PismoReferenceOptions& options)
+{
+    return occludes(map, ids, p, Receiver{p, normal, options, p, surface});
 }
 
 PismoReferenceMaps PismoReferenceMaps::layered(const reference::PismoMaps& maps)
 {
-    PismoReferenceMaps out{&maps, maps.maps, {}};
+    PismoReferenceMaps out{&maps, maps.maps, {}, maps.surface_ids};
     for (const LayeredDepthMap& map : maps.maps) out.bled.push_back(bleed_empty_pixels(map));
     return out;
 }
 
 PismoReferenceMaps PismoReferenceMaps::maximum_depth(const reference::PismoMaps& maps)
 {
-    PismoReferenceMaps out{&maps, {}, {}};
+    PismoReferenceMaps out{&maps, {}, {}, {}};
     for (const LayeredDepthMap& map : maps.maps) {
         out.test.push_back(maximum_depth_map(map));
         out.bled.push_back(bleed_empty_pixels(out.test.back()));
@@ -170,10 +218,11 @@ Vec3 tested_point(const PismoReferenceMaps& maps, Vec3 p, Vec3 n, const PismoRef
     return p + normalize(n) * (o.lift_texels * texel * sine);
 }
 
-double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o, Vec3 normal)
+double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o, Vec3 normal,
+                        int surface)
 {
     const reference::LightMesh& mesh = maps.source->mesh;
-    const Receiver r{p, normal, o, tested_point(maps, p, normal, o)};
+    const Receiver r{p, normal, o, tested_point(maps, p, normal, o), surface};
     std::vector<std::optional<double>> estimate(mesh.vertices.size());
     for (std::size_t j = 0; j < estimate.size(); ++j) estimate[j] = nearest_occluder_depth(maps.bled[j], r);
     const double total_area = mesh.area();
@@ -207,9 +256,10 @@ double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoRefer
                 // other corners answer, renormalised; none left: the ray is lit.
                 double blocked = 0, answering = 0;
                 for (int k = 0; k < 3; ++k) {
-                    const LayeredDepthMap& map = maps.test[std::size_t(corners[k])];
+                    const auto j = std::size_t(corners[k]);
+                    const LayeredDepthMap& map = maps.test[j];
                     if (r.faces_away(vec(map.camera().position))) continue;
-                    blocked += w[k] * occludes(map, occluder, r);
+                    blocked += w[k] * occludes(map, ids_of(maps, j), occluder, r);
                     answering += w[k];
                 }
                 occlusion += answering > 0 ? share * blocked / answering / (n * n) : 0;
@@ -218,12 +268,14 @@ double pismo_visibility(const PismoReferenceMaps& maps, Vec3 p, const PismoRefer
     return std::clamp(1 - occlusion, 0.0, 1.0);
 }
 
-double averaged_hard_shadows(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o, Vec3 normal)
+double averaged_hard_shadows(const PismoReferenceMaps& maps, Vec3 p, const PismoReferenceOptions& o, Vec3 normal,
+                             int surface)
 {
     const std::vector<double> weights = maps.source->mesh.vertex_weights();
-    const Receiver r{p, normal, o, tested_point(maps, p, normal, o)};
+    const Receiver r{p, normal, o, tested_point(maps, p, normal, o), surface};
     double occlusion = 0;
-    for (std::size_t j = 0; j < weights.size(); ++j) occlusion += weights[j] * occludes(maps.test[j], r.at, r);
+    for (std::size_t j = 0; j < weights.size(); ++j)
+        occlusion += weights[j] * occludes(maps.test[j], ids_of(maps, j), r.at, r);
     return std::clamp(1 - occlusion, 0.0, 1.0);
 }
 

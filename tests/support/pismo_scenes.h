@@ -16,11 +16,13 @@
 
 namespace penumbra::testing {
 
-inline PismoMaps library_maps(const reference::PismoMaps& m, PismoDepths depths = PismoDepths::Layered)
+inline PismoMaps library_maps(const reference::PismoMaps& m, PismoDepths depths = PismoDepths::Layered,
+                              bool surface_ids = false)
 {
     std::vector<std::array<double, 3>> vertices;
     for (const reference::Vec3& v : m.mesh.vertices) vertices.push_back({v.x, v.y, v.z});
-    return PismoMaps(vertices, m.mesh.triangles, m.maps, depths);
+    return PismoMaps(vertices, m.mesh.triangles, m.maps, depths,
+                     surface_ids ? m.surface_ids : std::vector<std::vector<std::int32_t>>{});
 }
 
 // A square light 2 x 2 at height 10 facing down, a thin blocker (4.99 <= y

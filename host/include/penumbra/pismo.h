@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -46,8 +47,15 @@ public:
     // than of vertices, an index out of range, a triangle of zero area, a map
     // of 0 pixels, maps of different sizes, a camera away from its vertex, or
     // more than 2^31 depths in all.
+    // surface_ids (optional; docs/pismo.md, "A surface id per layer"): per
+    // map, parallel to its depths(), the id of the surface each layer crosses,
+    // in [0, kPismoMaxSurfaceId]; Error(InvalidArgument), parameter
+    // "surface-ids", for a count other than the maps' or a map's layers', an
+    // id out of range, or ids with the maximum-depth maps (whose one layer
+    // per pixel is no crossing of one surface).
     PismoMaps(std::vector<std::array<double, 3>> vertices, std::vector<std::array<int, 3>> triangles,
-              const std::vector<LayeredDepthMap>& maps, PismoDepths depths = PismoDepths::Layered);
+              const std::vector<LayeredDepthMap>& maps, PismoDepths depths = PismoDepths::Layered,
+              const std::vector<std::vector<std::int32_t>>& surface_ids = {});
 
     const std::vector<std::array<double, 3>>& vertices() const noexcept { return vertices_; }
     const std::vector<std::array<int, 3>>& triangles() const noexcept { return triangles_; }
@@ -55,6 +63,7 @@ public:
     std::vector<LayeredDepthMap> test_maps() const;
     std::vector<LayeredDepthMap> bled_maps() const;
     PismoDepths depths() const noexcept { return depths_; }
+    bool has_surface_ids() const noexcept { return has_surface_ids_; }
     bool empty() const noexcept { return vertices_.empty(); }
     std::size_t bytes() const noexcept;  // of the test and bled maps as held
     // The library's own: the packed arrays (nullptr when empty).
@@ -65,6 +74,7 @@ private:
     std::vector<std::array<int, 3>> triangles_;
     std::shared_ptr<const detail::PismoArrays> arrays_;
     PismoDepths depths_ = PismoDepths::Layered;
+    bool has_surface_ids_ = false;
 };
 
 // About this many rays per shading point, stratified per triangle by area:
@@ -82,6 +92,14 @@ inline constexpr ParameterRange kPismoBiasRange{"bias-texels", "bias-texels", 0,
 // (docs/pismo.md, "The receiver's own surface").
 inline constexpr float kPismoMaxSlopeTexels = 8.0f;
 
+// With surface ids (maps made with them and receivers with a 7th plane), a
+// layer of another surface than the receiver's occludes with this bias, in
+// texels, and a layer of its own surface never (docs/pismo.md, "A surface id
+// per layer": 0, 0.5 and 1 measured alike; 1 leaves a margin for surfaces
+// that touch). Ids are stored as floats: at most 2^24 - 1.
+inline constexpr float kPismoOtherSurfaceBiasTexels = 1.0f;
+inline constexpr std::int32_t kPismoMaxSurfaceId = (1 << 24) - 1;
+
 struct PismoOptions {
     int rays = 64;            // kPismoRaysRange
     float bias_texels = 2.0f;  // kPismoBiasRange (docs/pismo.md: why 2)
@@ -89,8 +107,9 @@ struct PismoOptions {
 
 // Throws Error(InvalidArgument) naming the parameter: rays, bias-texels,
 // maps (empty), receivers (3 channels x, y, z, world positions, or 6: then
-// the normals' x, y, z, and the receiver's own surface takes part; not empty,
-// finite), out (1 channel of the receivers' size).
+// the normals' x, y, z, and the receiver's own surface takes part, or 7: then
+// the id of the receiver's surface, < 0 unknown, used when the maps carry
+// surface ids; not empty, finite), out (1 channel of the receivers' size).
 void pismo_shade(Context& context, const PismoMaps& maps, const Image& receivers, const PismoOptions& options,
                  Image& out);
 Image pismo_shade(Context& context, const PismoMaps& maps, const Image& receivers, const PismoOptions& options = {});

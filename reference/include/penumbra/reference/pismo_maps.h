@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -50,6 +51,8 @@ LightMesh light_mesh(const AreaLight& light, int level);
 // receiver only; leaving it out keeps empty the pixels that see no caster,
 // which the bled maps fill. scene_surfaces order otherwise.
 std::vector<Primitive> pismo_casters(const Scene& scene);
+// The index into scene_surfaces(scene) of each of pismo_casters(scene).
+std::vector<int> pismo_caster_surfaces(const Scene& scene);
 
 // The point every map camera looks at: the centre of the bounding box of the
 // bounded casters (spheres, boxes, capsules, hair), or, without any, the
@@ -117,13 +120,20 @@ struct LayeredMapOptions {
 // distance of every surface crossing (entering and leaving each solid), pruned
 // and capped as above. Rows in parallel; the result does not depend on the
 // thread count. Error(InvalidArgument) naming the option out of range.
+// With `crossed`, it is set to the caster (its index in `casters`) each layer
+// crosses, parallel to the map's depths().
 LayeredDepthMap render_layered_depth_map(const PreparedScene& casters, const MapCamera& camera,
-                                         const LayeredMapOptions& options);
+                                         const LayeredMapOptions& options,
+                                         std::vector<std::int32_t>* crossed = nullptr);
 
 struct PismoMaps {
     LightMesh mesh;
     Vec3 fixation;
     std::vector<LayeredDepthMap> maps;  // one per mesh vertex, in vertex order
+    // Per map, parallel to its depths(): the surface each layer crosses, its
+    // index into scene_surfaces(scene), as Receivers::surface names the
+    // receiver's (docs/pismo.md, "A surface id per layer").
+    std::vector<std::vector<std::int32_t>> surface_ids;
 };
 
 // The mesh at `level` and a layered map from each of its vertices: cameras of

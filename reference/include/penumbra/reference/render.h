@@ -51,6 +51,9 @@ Image render_shadow_map(const Scene& scene, int width, int height, ShadowDepth d
 //  mask            1 channel: 1 where the pixel is a valid receiver: it sees a
 //                  surface whose (u, v, z) lies in [0, 1]^3, inside the light's
 //                  frustum; 0 elsewhere.
+//  surface         1 channel: the index into scene_surfaces(scene) of the
+//                  surface seen (its identity: Pismo's surface ids,
+//                  docs/pismo.md), -1 where the pixel sees nothing
 // Pixels that see nothing get (u, v, z) = (0, 0, 1) (the far plane), zero
 // position, normal and depth. Pixels that see a surface outside the light's
 // frustum keep their position, normal and depth, and get (u, v, z) clamped to
@@ -62,14 +65,19 @@ struct Receivers {
     Image view_depth;
     Image hit;
     Image mask;
+    Image surface;
 
     int width() const noexcept { return mask.width(); }
     int height() const noexcept { return mask.height(); }
-    // Zero-filled images of the given size (for receivers built by hand).
+    // Zero-filled images of the given size (for receivers built by hand),
+    // but `surface`, -1 (unknown) everywhere.
     static Receivers allocate(int width, int height);
     // World positions then normals, 6 planes: what Pismo reads to count the
     // receiver's own surface (docs/pismo.md), as RX.exr's P and N channels.
     Image positions_and_normals() const;
+    // The same and then `surface`, 7 planes: with maps that carry surface ids,
+    // what Pismo reads to tell P's own surface from the others.
+    Image positions_normals_and_surface() const;
 };
 
 Receivers render_receivers(const Scene& scene, int width, int height);
