@@ -47,7 +47,7 @@ Inputs& inputs(DepthConventionKind kind)
     auto found = cache.find(kind);
     if (found != cache.end()) return found->second;
     const DepthConvention c = testing::convention_of(kind);
-    Inputs in{testing::in_convention(depth_map(kSize), 0, c), testing::in_convention(receivers(kSize), 2, c), {}};
+    Inputs in{testing::in_convention(depth_map(kSize), 0, c), testing::in_convention(receivers(kSize), 2, c), {}, {}};
     in.table = MomentTable(kSize, kSize, 2, Precision::Exact, kVsmLimbs, TableValues{0, 0.0f, 0.0f, c});
     in.float_table = MomentTable(kSize, kSize, 2, Precision::Float, kVsmLimbs, TableValues{0, 0.0f, 0.0f, c});
     return cache.emplace(kind, std::move(in)).first->second;
