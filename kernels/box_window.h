@@ -90,8 +90,8 @@ PN_FN void direct_box_sums(PN_GLOBAL const float* depth, pn_dims d, DepthConvers
  * box query (`depth`: the map, one plane of dims `d`, stored in convention
  * `c`, converted per tap without clamps: the host checked the map's range
  * up front, and texel_values clamps l; kernels/depth_convention.h. The kind
- * is not made a literal here: four copies of EVSM's window made its
- * normalised path slower, docs/integration.md, "Depth conventions").
+ * is not made a literal: four copies of EVSM's window made its normalised
+ * path slower, docs/integration.md, "Depth conventions").
  * One reciprocal of the area, not a division per value: double divisions are
  * much of MSM's and EVSM's time; it moves a mean by at most one rounding
  * (2^-53 relative). */

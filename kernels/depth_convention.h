@@ -38,22 +38,14 @@
 #ifndef PENUMBRA_DEPTH_CONVENTION_H
 #define PENUMBRA_DEPTH_CONVENTION_H
 
-/* The table builds call the `_as` forms with `kind` a literal, c.kind
- * dispatched once per block or band (PN_DEPTH_KIND_LITERAL, below), so that
- * the kind's branches fold away whatever the compiler hoists and normalised
- * depth compiles to the loop it was before conventions. The forms without `_as` read c.kind, for the
- * per-receiver loads. What each convention costs: docs/integration.md,
- * "Depth conventions", "Measured". */
-
-/* Runs CALL(k) with k the literal PN_DEPTH_* equal to the uniform `kind`:
- * CALL is a function-like macro the caller defines around its loop. */
-#define PN_DEPTH_KIND_LITERAL(kind, CALL)                                   \
-    do {                                                                    \
-        if ((kind) == PN_DEPTH_NORMALIZED) CALL(PN_DEPTH_NORMALIZED);        \
-        else if ((kind) == PN_DEPTH_LINEAR) CALL(PN_DEPTH_LINEAR);           \
-        else if ((kind) == PN_DEPTH_PERSPECTIVE) CALL(PN_DEPTH_PERSPECTIVE); \
-        else CALL(PN_DEPTH_REVERSED);                                       \
-    } while (0)
+/* The `_as` forms take the kind apart from the conversion's constants, for
+ * the per-texel loops (the table builds, the direct window sums), which pass
+ * c.kind: uniform across the loop, its tests are hoisted by the compiler. A
+ * literal kind per loop (four instantiations of every build loop) was
+ * measured and dropped: no faster, and 4x the code on every ISA and in the
+ * OpenCL programs. The forms without `_as` read c.kind, for the per-receiver
+ * loads. What each convention costs: docs/integration.md, "Depth
+ * conventions", "Measured". */
 
 /* Stored depths the conventions refuse: outside [low, high] (normalised:
  * [0, 1], so that a zeroed DepthConversion is today's contract), NaN and

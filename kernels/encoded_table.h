@@ -74,9 +74,6 @@ PN_FN void encoded_band_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T* tab
 }
 PN_TABLE_VARIANTS(PN_ENCODED_BAND)
 
-/* The convention's kind as a literal (kernels/depth_convention.h). */
-#define PN_ENCODED_BAND_AS_float(kind) encoded_band_float(depth, table, columns, bad_rows, p, kind, pn_task, y0, y1)
-#define PN_ENCODED_BAND_AS_exact(kind) encoded_band_exact(depth, table, columns, bad_rows, p, kind, pn_task, y0, y1)
 
 /* Pass 1: band `pn_task` becomes a table of its own. Lanes past the width
  * add encoded zeros to the row sums, but only after the row's last pixel. */
@@ -87,7 +84,7 @@ PN_KERNEL void encoded_bands_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T
     PN_TASK_BEGIN((p.depth.height + p.band_height - 1) / p.band_height);                                       \
     const int y0 = pn_task * p.band_height;                                                                    \
     const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;                  \
-    PN_DEPTH_KIND_LITERAL(p.convention.kind, PN_ENCODED_BAND_AS_##variant);                                    \
+    encoded_band_##variant(depth, table, columns, bad_rows, p, p.convention.kind, pn_task, y0, y1);             \
 }
 PN_TABLE_VARIANTS(PN_ENCODED_BANDS_KERNEL)
 

@@ -90,8 +90,7 @@ PN_FN void sat_rows_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
 }
 
 /* The moment count as a literal lets the compiler unroll the per-moment loop
- * and keep the row sums in registers (measured: docs/moment_table.md); the
- * convention's kind as a literal folds its branches (kernels/depth_convention.h). */
+ * and keep the row sums in registers (measured: docs/moment_table.md). */
 PN_FN void sat_block_float_as(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
                               PN_GLOBAL float* carry, PN_GLOBAL float* columns, int column_row,
                               PN_GLOBAL int* bad_rows, const SatParams p, int kind, int x0, int x1, int y0, int y1)
@@ -106,10 +105,7 @@ PN_FN void sat_block_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
                            PN_GLOBAL float* carry, PN_GLOBAL float* columns, int column_row,
                            PN_GLOBAL int* bad_rows, const SatParams p, int x0, int x1, int y0, int y1)
 {
-#define PN_SAT_BLOCK_FLOAT_AS(kind) \
-    sat_block_float_as(depth, table, carry, columns, column_row, bad_rows, p, kind, x0, x1, y0, y1)
-    PN_DEPTH_KIND_LITERAL(p.convention.kind, PN_SAT_BLOCK_FLOAT_AS);
-#undef PN_SAT_BLOCK_FLOAT_AS
+    sat_block_float_as(depth, table, carry, columns, column_row, bad_rows, p, p.convention.kind, x0, x1, y0, y1);
 }
 
 /* The values of one strip (double, from the float32 depth clamped into
@@ -218,8 +214,7 @@ PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
 
 /* The value and limb counts as literals let the compiler unroll the
  * per-plane loops and keep the row sums in registers (measured:
- * docs/moment_table.md); the convention's kind as a literal folds its
- * branches (kernels/depth_convention.h). */
+ * docs/moment_table.md). */
 PN_FN void sat_block_exact_as(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                               PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
                               PN_GLOBAL int* bad_rows, const SatParams p, int kind, int x0, int x1, int y0, int y1)
@@ -241,10 +236,7 @@ PN_FN void sat_block_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                            PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
                            PN_GLOBAL int* bad_rows, const SatParams p, int x0, int x1, int y0, int y1)
 {
-#define PN_SAT_BLOCK_EXACT_AS(kind) \
-    sat_block_exact_as(depth, table, carry, columns, column_row, bad_rows, p, kind, x0, x1, y0, y1)
-    PN_DEPTH_KIND_LITERAL(p.convention.kind, PN_SAT_BLOCK_EXACT_AS);
-#undef PN_SAT_BLOCK_EXACT_AS
+    sat_block_exact_as(depth, table, carry, columns, column_row, bad_rows, p, p.convention.kind, x0, x1, y0, y1);
 }
 
 /* Banded schedule, pass 1: band `pn_task` of `band_height` rows becomes a
