@@ -75,6 +75,11 @@ status=0
 # tracer can crash at exit, below); a real failure fails twice.
 # The install tests (label install) configure and build two consumer
 # projects: the main job runs them, and under ASan they test the compiler.
+# The probe (label probe, scripts/probe.py --quick: ~930 CLI runs) runs in
+# the main job only: under ASan it was 184 s alone and 300 s beside the rest
+# (a quarter of this suite's CPU), and what it feeds the CLI meets the
+# sanitizers here through the readers' fuzzers (.ci/fuzz.sh) and
+# tests/sanitize/cli_bad_input.sh below.
 # The OpenCL cases of the kernel tests run in the second pass below, a
 # chosen set of them (under ASan they were 43% of this suite's time: each
 # process starts PoCL, whose code ASan does not see; our host code around it
@@ -82,7 +87,7 @@ status=0
 # the runtime's and the cache repair's tests: as processes of a tenth of a
 # second each, LSan's tracer crashed at their exit, while PoCL's threads
 # were still starting, in both tries of four of them (docs/ci.md).
-ctest --test-dir "$build" --output-on-failure -j2 --timeout 1800 -LE 'slow|install' \
+ctest --test-dir "$build" --output-on-failure -j2 --timeout 1800 -LE 'slow|install|probe' \
   -E '(MomentFidelity|MomentAgreement)\..*/(sse4_2|avx2|avx512|opencl)( |$)|/opencl( |$)|^OpenClRuntime\.|^OpenClCacheRepair\.|^Demo\.QuickRunCoversEveryMethodOnEverySceneWithoutNaN$' \
   --repeat until-pass:2 || status=1
 # Second pass: the OpenCL tests, with full unwinding through the driver
