@@ -71,7 +71,7 @@ PN_FN void direct_box_sums(PN_GLOBAL const float* depth, pn_dims d, DepthConvers
         for (int dy = 0; dy < side; ++dy)
             for (int dx = 0; dx < side; ++dx) {
                 const pn_float stored = pn_gather(depth, origin + (dy * d.pitch + dx));
-                texel_values(depth_to_unclamped_as(stored, c, c.kind), encoding, c_positive, c_negative, moments, v);
+                texel_values(depth_to_unclamped(stored, c), encoding, c_positive, c_negative, moments, v);
                 for (int k = 0; k < moments; ++k) sum[k] = sum[k] + v[k];
             }
         return;
@@ -80,7 +80,7 @@ PN_FN void direct_box_sums(PN_GLOBAL const float* depth, pn_dims d, DepthConvers
     for (int dy = 0; dy < side; ++dy)
         for (int dx = 0; dx < side; ++dx) {
             const pn_dmask inside = pn_mask_to_dmask(pn_and(columns > (float)dx, rows > (float)dy));
-            texel_values(depth_to_unclamped_as(pn_fetch(depth, d, w.x0 + dx, w.y0 + dy), c, c.kind), encoding,
+            texel_values(depth_to_unclamped(pn_fetch(depth, d, w.x0 + dx, w.y0 + dy), c), encoding,
                          c_positive, c_negative, moments, v);
             for (int k = 0; k < moments; ++k) sum[k] = sum[k] + pn_dselect(inside, v[k], 0.0);
         }

@@ -38,22 +38,13 @@
 #ifndef PENUMBRA_DEPTH_CONVENTION_H
 #define PENUMBRA_DEPTH_CONVENTION_H
 
-/* The `_as` forms take the kind apart from the conversion's constants, for
- * the per-texel loops (the table builds, the direct window sums), which pass
- * c.kind: uniform across the loop, its tests are hoisted by the compiler. A
- * literal kind per loop (four instantiations of every build loop) was
- * measured and dropped: no faster, and 4x the code on every ISA and in the
- * OpenCL programs. The forms without `_as` read c.kind, for the per-receiver
- * loads. What each convention costs: docs/integration.md, "Depth
- * conventions", "Measured". */
-
 /* Stored depths the conventions refuse: outside [low, high] (normalised:
  * [0, 1], so that a zeroed DepthConversion is today's contract), NaN and
  * infinities included. */
-PN_FN pn_mask depth_outside_as(pn_float z, DepthConversion c, int kind)
+PN_FN pn_mask depth_outside(pn_float z, DepthConversion c)
 {
-    const float low = kind == PN_DEPTH_NORMALIZED ? 0.0f : c.low;
-    const float high = kind == PN_DEPTH_NORMALIZED ? 1.0f : c.high;
+    const float low = c.kind == PN_DEPTH_NORMALIZED ? 0.0f : c.low;
+    const float high = c.kind == PN_DEPTH_NORMALIZED ? 1.0f : c.high;
     return pn_not(pn_and(z >= low, z <= high));
 }
 
@@ -64,41 +55,30 @@ PN_FN pn_mask depth_outside_as(pn_float z, DepthConversion c, int kind)
  * anyway and flag or refuse what lies outside the range (the table builds,
  * the direct window sums), where every operation on the way from the load
  * to the stores is paid. */
-PN_FN pn_float depth_to_unclamped_as(pn_float z, DepthConversion c, int kind)
+PN_FN pn_float depth_to_unclamped(pn_float z, DepthConversion c)
 {
-    if (kind == PN_DEPTH_NORMALIZED) return z;
-    if (kind == PN_DEPTH_LINEAR) return (z - c.low) * c.scale;
-    const pn_float far_side = kind == PN_DEPTH_PERSPECTIVE ? z : 1.0f - z;  /* grows with d */
-    const pn_float near_side = kind == PN_DEPTH_PERSPECTIVE ? 1.0f - z : z; /* shrinks with d */
+    if (c.kind == PN_DEPTH_NORMALIZED) return z;
+    if (c.kind == PN_DEPTH_LINEAR) return (z - c.low) * c.scale;
+    const pn_float far_side = c.kind == PN_DEPTH_PERSPECTIVE ? z : 1.0f - z;  /* grows with d */
+    const pn_float near_side = c.kind == PN_DEPTH_PERSPECTIVE ? 1.0f - z : z; /* shrinks with d */
     return far_side / (1.0f + c.scale * near_side);
 }
 
 /* The same clamped into [0, 1], for stored values the caller checks or flags
  * (a map checked up front, a table build's flag): equal to
- * depth_to_normalized_as on every value in the range, one clamp fewer. */
-PN_FN pn_float depth_checked_to_normalized_as(pn_float stored, DepthConversion c, int kind)
+ * depth_to_normalized on every value in the range, one clamp fewer. */
+PN_FN pn_float depth_checked_to_normalized(pn_float stored, DepthConversion c)
 {
-    if (kind == PN_DEPTH_NORMALIZED) return stored;
-    return pn_clamp(depth_to_unclamped_as(stored, c, kind), 0.0f, 1.0f);
+    if (c.kind == PN_DEPTH_NORMALIZED) return stored;
+    return pn_clamp(depth_to_unclamped(stored, c), 0.0f, 1.0f);
 }
 
 /* The normalised linear depth of a stored value, clamped (top of this file):
- * pn_clamp(depth_to_unclamped_as(...), 0, 1) of every value in the range. */
-PN_FN pn_float depth_to_normalized_as(pn_float stored, DepthConversion c, int kind)
-{
-    if (kind == PN_DEPTH_NORMALIZED) return stored;
-    return depth_checked_to_normalized_as(pn_clamp(stored, c.low, c.high), c, kind);
-}
-
-PN_FN pn_mask depth_outside(pn_float z, DepthConversion c)
-{
-    return depth_outside_as(z, c, c.kind);
-}
-
-/* The normalised linear depth of a stored value (top of this file). */
+ * pn_clamp(depth_to_unclamped(...), 0, 1) of every value in the range. */
 PN_FN pn_float depth_to_normalized(pn_float stored, DepthConversion c)
 {
-    return depth_to_normalized_as(stored, c, c.kind);
+    if (c.kind == PN_DEPTH_NORMALIZED) return stored;
+    return depth_checked_to_normalized(pn_clamp(stored, c.low, c.high), c);
 }
 
 /* dl/dz at normalised depth l (top of this file): scales a receiver plane's
@@ -147,7 +127,7 @@ PN_FN pn_float depth_lit(pn_float stored, pn_float threshold, DepthConversion c)
  * map's range was checked up front (the percentage-closer family's host). */
 PN_FN pn_float depth_fetch(PN_GLOBAL const float* depth, pn_dims map, pn_int x, pn_int y, DepthConversion c)
 {
-    return depth_checked_to_normalized_as(pn_fetch(depth, map, x, y), c, c.kind);
+    return depth_checked_to_normalized(pn_fetch(depth, map, x, y), c);
 }
 
 #endif

@@ -46,8 +46,7 @@ PN_FN pn_uint encoded_summand_exact(pn_float v) { return encoded_step(v); }
  * column sums (row `band` of `columns`). */
 #define PN_ENCODED_BAND(variant, T)                                                                                \
 PN_FN void encoded_band_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T* table, PN_GLOBAL T* columns,          \
-                                  PN_GLOBAL int* bad_rows, const EncodedSatParams p, int kind, int band, int y0,   \
-                                  int y1)                                                                          \
+                                  PN_GLOBAL int* bad_rows, const EncodedSatParams p, int band, int y0, int y1)     \
 {                                                                                                                  \
     for (int y = y0; y < y1; ++y) {                                                                                \
         pn_sum_##variant row_sum[4];                                                                               \
@@ -56,9 +55,9 @@ PN_FN void encoded_band_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T* tab
         PN_FOR_STRIPS(x, 0, p.depth.width)                                                                         \
         {                                                                                                          \
             const pn_float z = pn_load(depth, p.depth, x, y);                                                      \
-            bad = pn_or(bad, depth_outside_as(z, p.convention, kind));                                             \
+            bad = pn_or(bad, depth_outside(z, p.convention));                                                      \
             pn_float v[4];                                                                                         \
-            encode_texel(pn_clamp(depth_to_unclamped_as(z, p.convention, kind), 0.0f, 1.0f), p, v);               \
+            encode_texel(pn_clamp(depth_to_unclamped(z, p.convention), 0.0f, 1.0f), p, v);                         \
             for (int k = 0; k < p.channels; ++k) {                                                                 \
                 PN_GLOBAL T* column = PN_PLANE(columns, p.columns, k);                                             \
                 const pn_sum_##variant row_prefix =                                                                \
@@ -74,7 +73,6 @@ PN_FN void encoded_band_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T* tab
 }
 PN_TABLE_VARIANTS(PN_ENCODED_BAND)
 
-
 /* Pass 1: band `pn_task` becomes a table of its own. Lanes past the width
  * add encoded zeros to the row sums, but only after the row's last pixel. */
 #define PN_ENCODED_BANDS_KERNEL(variant, T)                                                                    \
@@ -84,7 +82,7 @@ PN_KERNEL void encoded_bands_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T
     PN_TASK_BEGIN((p.depth.height + p.band_height - 1) / p.band_height);                                       \
     const int y0 = pn_task * p.band_height;                                                                    \
     const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;                  \
-    encoded_band_##variant(depth, table, columns, bad_rows, p, p.convention.kind, pn_task, y0, y1);             \
+    encoded_band_##variant(depth, table, columns, bad_rows, p, pn_task, y0, y1);                               \
 }
 PN_TABLE_VARIANTS(PN_ENCODED_BANDS_KERNEL)
 

@@ -61,8 +61,7 @@ PN_FN pn_mask sat_depth_outside(pn_float z)
  * A depth outside its convention's range (NaN and infinities included) sets bad_rows[y]. */
 PN_FN void sat_rows_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
                           PN_GLOBAL float* carry, PN_GLOBAL float* columns, int column_row,
-                          PN_GLOBAL int* bad_rows, const SatParams p, int moments, int kind, int x0, int x1, int y0,
-                          int y1)
+                          PN_GLOBAL int* bad_rows, const SatParams p, int moments, int x0, int x1, int y0, int y1)
 {
     for (int y = y0; y < y1; ++y) {
         pn_float row_sum[4];
@@ -71,8 +70,8 @@ PN_FN void sat_rows_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
         PN_FOR_STRIPS(x, x0, x1)
         {
             const pn_float stored = pn_load(depth, p.depth, x, y);
-            bad = pn_or(bad, depth_outside_as(stored, p.convention, kind));
-            const pn_float z = depth_checked_to_normalized_as(stored, p.convention, kind);
+            bad = pn_or(bad, depth_outside(stored, p.convention));
+            const pn_float z = depth_checked_to_normalized(stored, p.convention);
             pn_float m = z;
             for (int k = 0; k < moments; ++k) {
                 PN_GLOBAL float* column = PN_PLANE(columns, p.columns, k);
@@ -91,21 +90,14 @@ PN_FN void sat_rows_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
 
 /* The moment count as a literal lets the compiler unroll the per-moment loop
  * and keep the row sums in registers (measured: docs/moment_table.md). */
-PN_FN void sat_block_float_as(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
-                              PN_GLOBAL float* carry, PN_GLOBAL float* columns, int column_row,
-                              PN_GLOBAL int* bad_rows, const SatParams p, int kind, int x0, int x1, int y0, int y1)
-{
-    if (p.moments == 2)
-        sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, 2, kind, x0, x1, y0, y1);
-    else
-        sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, 4, kind, x0, x1, y0, y1);
-}
-
 PN_FN void sat_block_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
                            PN_GLOBAL float* carry, PN_GLOBAL float* columns, int column_row,
                            PN_GLOBAL int* bad_rows, const SatParams p, int x0, int x1, int y0, int y1)
 {
-    sat_block_float_as(depth, table, carry, columns, column_row, bad_rows, p, p.convention.kind, x0, x1, y0, y1);
+    if (p.moments == 2)
+        sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, 2, x0, x1, y0, y1);
+    else
+        sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, 4, x0, x1, y0, y1);
 }
 
 /* The values of one strip (double, from the float32 depth clamped into
@@ -175,7 +167,7 @@ PN_FN void sat_depth_limbs2(pn_float z, pn_uint* out)
 PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                           PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
                           PN_GLOBAL int* bad_rows, const SatParams p, int moments, int limbs, int depth_in_float,
-                          int kind, int x0, int x1, int y0, int y1)
+                          int x0, int x1, int y0, int y1)
 {
     const int planes = moments * limbs;
     for (int y = y0; y < y1; ++y) {
@@ -185,8 +177,8 @@ PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
         PN_FOR_STRIPS(x, x0, x1)
         {
             const pn_float stored = pn_load(depth, p.depth, x, y);
-            bad = pn_or(bad, depth_outside_as(stored, p.convention, kind));
-            const pn_float z = depth_to_unclamped_as(stored, p.convention, kind);  /* both clamp it next */
+            bad = pn_or(bad, depth_outside(stored, p.convention));
+            const pn_float z = depth_to_unclamped(stored, p.convention);  /* both clamp it next */
             pn_double v[4];
             sat_texel_values(z, p, moments, v);
             pn_uint q[PN_MAX_PLANES];
@@ -215,28 +207,21 @@ PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
 /* The value and limb counts as literals let the compiler unroll the
  * per-plane loops and keep the row sums in registers (measured:
  * docs/moment_table.md). */
-PN_FN void sat_block_exact_as(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
-                              PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
-                              PN_GLOBAL int* bad_rows, const SatParams p, int kind, int x0, int x1, int y0, int y1)
-{
-    const int powers = p.encoding == PN_TABLE_POWERS;
-    if (p.moments == 2 && p.limbs == 2 && powers)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, 1, kind, x0, x1, y0, y1);
-    else if (p.moments == 2 && p.limbs == 2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, 0, kind, x0, x1, y0, y1);
-    else if (p.moments == 4 && p.limbs == 2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 2, 0, kind, x0, x1, y0, y1);
-    else if (p.moments == 2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 3, 0, kind, x0, x1, y0, y1);
-    else
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 3, 0, kind, x0, x1, y0, y1);
-}
-
 PN_FN void sat_block_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                            PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
                            PN_GLOBAL int* bad_rows, const SatParams p, int x0, int x1, int y0, int y1)
 {
-    sat_block_exact_as(depth, table, carry, columns, column_row, bad_rows, p, p.convention.kind, x0, x1, y0, y1);
+    const int powers = p.encoding == PN_TABLE_POWERS;
+    if (p.moments == 2 && p.limbs == 2 && powers)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, 1, x0, x1, y0, y1);
+    else if (p.moments == 2 && p.limbs == 2)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, 0, x0, x1, y0, y1);
+    else if (p.moments == 4 && p.limbs == 2)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 2, 0, x0, x1, y0, y1);
+    else if (p.moments == 2)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 3, 0, x0, x1, y0, y1);
+    else
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 3, 0, x0, x1, y0, y1);
 }
 
 /* Banded schedule, pass 1: band `pn_task` of `band_height` rows becomes a
