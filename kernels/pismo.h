@@ -86,6 +86,8 @@ typedef struct {
 typedef struct {
     pn_int pixel;   /* index into the offsets (clamped into the map: valid to gather) */
     pn_float limit; /* the point's depth minus the bias there */
+    pn_float depth; /* the point's depth */
+    pn_float texel; /* one texel's footprint at that depth */
     pn_mask inside;
 } PismoLanding;
 
@@ -105,8 +107,9 @@ PN_FN PismoLanding pismo_land(PN_GLOBAL const float* cameras, PismoParams p, int
     const pn_int ix = pn_to_int(pn_select(at.inside, col, 0.0f));
     const pn_int iy = pn_to_int(pn_select(at.inside, row, 0.0f));
     at.pixel = ix + iy * p.map_width + map * (p.map_width * p.map_height);
-    const pn_float depth = pn_sqrt(lx * lx + ly * ly + lz * lz);
-    at.limit = depth - bias_texels * (c[13] * depth);
+    at.depth = pn_sqrt(lx * lx + ly * ly + lz * lz);
+    at.texel = c[13] * at.depth;
+    at.limit = at.depth - bias_texels * at.texel;
     return at;
 }
 
@@ -213,7 +216,7 @@ PN_FN PismoCorner pismo_corner(PN_GLOBAL const float* cameras, PN_GLOBAL const f
     k.bias = pismo_bias(cameras, p, map, r);
     const PismoLanding at = pismo_land(cameras, p, map, r.p, k.bias);
     k.limit = at.limit;
-    k.other_limit = pismo_land(cameras, p, map, r.p, p.other_bias_texels).limit;
+    k.other_limit = at.depth - p.other_bias_texels * at.texel;
     k.p_inside = at.inside;
     k.own = pn_and(pismo_has_normal(r), pismo_facing(r, k.vx, k.vy, k.vz) <= 0.0f);
     return k;
