@@ -123,6 +123,13 @@ PN_FN void pn_ugather_pair(global const uint* ptr, int index, uint* first, uint*
  * component. The join is exact (both products and the sum below 2^49). */
 typedef uint2 pn_upair;
 PN_FN pn_upair pn_ugather_upair(global const uint* ptr, int index) { return vload2(0, ptr + index); }
+/* One 16-byte load (vload4 needs only the element's alignment). */
+PN_FN void pn_ugather_upair2(global const uint* ptr, int index, pn_upair* first, pn_upair* second)
+{
+    const uint4 v = vload4(0, ptr + index);
+    *first = v.xy;
+    *second = v.zw;
+}
 PN_FN double pn_upair_join(pn_upair v) { return (double)v.x * 65536.0 + (double)v.y; }
 
 PN_FN void pn_ustore_pair_stream(global uint* plane, pn_dims d, int x, int y, uint first, uint second)

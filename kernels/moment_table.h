@@ -415,14 +415,13 @@ PN_FN void sat_fractional_corners(PN_GLOBAL const uint* plane, pn_dims t, SatFra
 }
 
 /* The same for both limbs of a pair plane, kept whole: the corner pair
- * (a, a + 1) is 16 contiguous bytes (two pair gathers). */
+ * (a, a + 1) is 16 contiguous bytes, read as one (pn_ugather_upair2). */
 PN_FN void sat_fractional_corners_pair(PN_GLOBAL const uint* pair, pn_dims t, SatFractionalWindow w, pn_upair s[4][4])
 {
     for (int j = 0; j < 4; ++j)
         for (int c = 0; c < 4; c += 2) {
             const pn_int i = sat_corner_index(t, w.x[c], w.y[j]) * 2;
-            s[j][c] = pn_ugather_upair(pair, i);
-            s[j][c + 1] = pn_ugather_upair(pair, i + 2);
+            pn_ugather_upair2(pair, i, &s[j][c], &s[j][c + 1]);
         }
 }
 

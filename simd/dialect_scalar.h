@@ -122,6 +122,11 @@ struct pn_upair {
 };
 PN_FN pn_upair operator-(pn_upair a, pn_upair b) { return {a.first - b.first, a.second - b.second}; }
 PN_FN pn_upair pn_ugather_upair(const std::uint32_t* ptr, std::int32_t index) { return {ptr[index], ptr[index + 1]}; }
+PN_FN void pn_ugather_upair2(const std::uint32_t* ptr, std::int32_t index, pn_upair* first, pn_upair* second)
+{
+    *first = pn_ugather_upair(ptr, index);
+    *second = pn_ugather_upair(ptr, index + 2);
+}
 PN_FN double pn_upair_join(pn_upair v) { return double(v.first) * 65536.0 + double(v.second); }
 
 PN_FN void pn_ustore_pair_stream(std::uint32_t* plane, pn_dims d, int x, int y, std::uint32_t first, std::uint32_t second)
