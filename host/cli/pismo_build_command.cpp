@@ -64,6 +64,7 @@ int pismo_build_command(const std::vector<std::string>& argv)
     std::cout << "wrote " << out_dir << " (" << scene.name << ", level " << build.level << ", "
               << set.triangles.size() << " triangles, " << set.maps.size() << " maps of " << build.maps.size << "^2, "
               << (region.empty() ? "cameras holding the light's frustum" : "cameras fitted to the receivers")
+              << (set.surface_ids.empty() ? "" : ", each layer's surface id")
               << "): " << layers << " depths, " << bytes << " bytes of layered maps, " << std::fixed << std::setprecision(2)
               << seconds << " s to render\n";
     return 0;
