@@ -211,13 +211,14 @@ std::vector<std::string> receiver_channels_in(const ShadeFiles& files, const Met
 }
 
 // Receivers' surface ids are checked against the maps'; maps without ids
-// (pismo-build before format version 2) shade them as unknown, and say so.
+// (a set written without them, as before pismo-build's format version 2)
+// shade them as unknown, and say so.
 void check_pismo_receivers(const Image& receivers, const PismoMapSet& set, const ShadeFiles& files)
 {
     check_receiver_surfaces(receivers, set, files.receivers, "shade");
     if (receivers.channels() == 7 && set.surface_ids.empty())
         std::cerr << "penumbra shade: warning: " << files.receivers << " has surface ids but the maps carry none "
-                  << "(written before pismo-build's format version 2): shaded without ids\n";
+                  << "(a set written without them, as before pismo-build's format version 2): shaded without ids\n";
 }
 
 // A deep map's reader names the file, the pixel and the sample; the line is the command's.
