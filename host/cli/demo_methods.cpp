@@ -60,10 +60,11 @@ DemoSetting table_setting(const Method& method, std::string label, MethodSetting
             },
             .shade = [&method, s](Context& ctx, const DemoFrame&, const reference::Receivers& rx,
                                   const DemoPrepared& prepared) {
-                // Pismo reads positions and normals (the receiver's own surface counts); stacking the
-                // six planes is one pass over the view, under 1% of Pismo's own time at the demo's sizes.
+                // Pismo reads positions, normals and surface ids (the receiver's own surface counts, and
+                // with the maps' ids no layer of it occludes); stacking the seven planes is one pass over
+                // the view, under 1% of Pismo's own time at the demo's sizes.
                 const Image receivers =
-                    method.input == MethodInput::PismoMapSet ? rx.positions_and_normals() : rx.light_uvz;
+                    method.input == MethodInput::PismoMapSet ? rx.positions_normals_and_surface() : rx.light_uvz;
                 Image out(receivers.width(), receivers.height(), 1);
                 method.shade(ctx, *std::static_pointer_cast<const PreparedMap>(prepared), receivers, s, out);
                 return out;

@@ -1,7 +1,8 @@
 // penumbra pismo-build: a reference scene's Pismo maps (issue 15), written to
 // a directory (penumbra/pismo_files.h) for `shade --method pismo --pismo-maps`.
 //   --scene S           a built-in scene name or a JSON scene file (as render-scene)
-//   --out DIR           created if needed; pismo.json and map-NNNN.exr, all or none
+//   --out DIR           created if needed; pismo.json and map-NNNN.exr (with each
+//                       layer's surface id), all or none
 //   --light-level L, --map-size N, --layers K   the maps (pismo_input.h)
 //   --receivers RX.exr  fit the cameras to these receivers (channels P.x, P.y,
 //                       P.z, and mask when present) instead of the light's frustum
@@ -28,7 +29,8 @@ std::string help()
     return "usage: penumbra pismo-build --scene NAME|SCENE.json --out DIR [--light-level L] [--map-size N]\n"
            "                            [--layers K] [--receivers RX.exr]\n"
            "  Pismo's maps: the area light as a triangle mesh and a layered depth map from each vertex,\n"
-           "  written to DIR as pismo.json and one deep OpenEXR file per map (docs/pismo.md)\n" +
+           "  written to DIR as pismo.json and one deep OpenEXR file per map, each layer with the id of the\n"
+           "  surface it crosses (channel surface; format version 2, docs/pismo.md)\n" +
            pismo_map_options_help() +
            "  --receivers RX.exr  fit the cameras to these receivers (P.x, P.y, P.z; mask if present)\n"
            "                      instead of the light's whole frustum\n";
@@ -64,6 +66,7 @@ int pismo_build_command(const std::vector<std::string>& argv)
     std::cout << "wrote " << out_dir << " (" << scene.name << ", level " << build.level << ", "
               << set.triangles.size() << " triangles, " << set.maps.size() << " maps of " << build.maps.size << "^2, "
               << (region.empty() ? "cameras holding the light's frustum" : "cameras fitted to the receivers")
+              << (set.surface_ids.empty() ? "" : ", each layer's surface id")
               << "): " << layers << " depths, " << bytes << " bytes of layered maps, " << std::fixed << std::setprecision(2)
               << seconds << " s to render\n";
     return 0;

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <sstream>
 
 #include "input_limits.h"
 #include "penumbra/error.h"
 #include "penumbra/exr_io.h"
+#include "penumbra/pismo.h"
 
 namespace penumbra::cli {
 
@@ -77,6 +79,45 @@ std::vector<reference::Vec3> receiver_region_from(const std::string& path, const
         if (e.operation() == command) throw;
         throw Error(e.category(), command, e.message());
     }
+}
+
+std::vector<std::string> pismo_receiver_channels(const std::string& path, const std::string& command)
+{
+    const std::vector<std::string> present = exr_channel_names(path, exr_limits());
+    const auto has = [&](const char* name) { return std::find(present.begin(), present.end(), name) != present.end(); };
+    std::vector<std::string> channels = kWorldPositionChannels;
+    const bool normals = has("N.x") && has("N.y") && has("N.z");
+    if (normals) channels.insert(channels.end(), {"N.x", "N.y", "N.z"});
+    if (has(kSurfaceChannel)) {
+        if (!normals)
+            throw Error(ErrorCategory::InvalidData, command,
+                        path + ": has channel surface but not the normals N.x, N.y, N.z, which Pismo reads with "
+                               "the surface ids; add them (render-scene writes both) or drop channel surface");
+        channels.push_back(kSurfaceChannel);
+    }
+    return channels;
+}
+
+void check_receiver_surfaces(const Image& receivers, const PismoMapSet& set, const std::string& path,
+                             const std::string& command)
+{
+    if (receivers.channels() != 7) return;
+    const bool maps_know = !set.surface_ids.empty();
+    const double limit = maps_know ? double(set.surface_count) : double(kPismoMaxSurfaceId) + 1;
+    for (int y = 0; y < receivers.height(); ++y)
+        for (int x = 0; x < receivers.width(); ++x) {
+            const float id = receivers.at(6, x, y);
+            if (id == -1.0f || (id >= 0.0f && double(id) < limit && id == std::floor(id))) continue;
+            const std::string range = maps_know ? "the maps' scene has " + std::to_string(set.surface_count) +
+                                                      " surfaces (ids 0 to " + std::to_string(set.surface_count - 1) +
+                                                      "): render the receivers from the maps' scene"
+                                                : "ids are integers in [0, " + std::to_string(kPismoMaxSurfaceId) + "]";
+            std::ostringstream value;
+            value << id;
+            throw Error(ErrorCategory::InvalidData, command,
+                        path + ": channel surface at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " +
+                            value.str() + "; a surface id is -1 (unknown) or " + range);
+        }
 }
 
 }  // namespace penumbra::cli

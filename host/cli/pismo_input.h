@@ -46,5 +46,21 @@ std::vector<reference::Vec3> receiver_region_from(const std::string& path, const
 
 // The channels of the world positions Pismo shades.
 inline const std::vector<std::string> kWorldPositionChannels = {"P.x", "P.y", "P.z"};
+// RX.exr's optional channel of surface ids (docs/pismo.md, "Surface ids in
+// the files"): render-scene writes it as FLOAT, -1 where the view sees nothing.
+inline constexpr const char* kSurfaceChannel = "surface";
+
+// What `shade` reads from RX.exr for Pismo: P.x, P.y, P.z; then N.x, N.y, N.z
+// when the file has all three; then surface when it has it, which needs the
+// normals (the kernel's 7th plane follows the 6 of positions and normals):
+// surface without them is an Error(InvalidData, command) naming the file.
+std::vector<std::string> pismo_receiver_channels(const std::string& path, const std::string& command);
+
+// The surface ids of `receivers` (its 7th plane, when it has one), each -1
+// (unknown: that receiver shades without ids) or an integer in [0, the maps'
+// surface_count), or in [0, kPismoMaxSurfaceId] when the maps carry no ids.
+// Error(InvalidData, command) naming the file, the pixel, the value and the fix.
+void check_receiver_surfaces(const Image& receivers, const PismoMapSet& set, const std::string& path,
+                             const std::string& command);
 
 }  // namespace penumbra::cli

@@ -4,7 +4,10 @@
 //   SM.exr  channel Z: the shadow map (light depth in [0, 1]; --depth picks the
 //           first surface, the midpoint of the first two or the second, Woo 1992)
 //   RX.exr  channels u, v, z (light space), P.x P.y P.z (world position),
-//           N.x N.y N.z (normal), mask (1 where the receiver is valid)
+//           N.x N.y N.z (normal), mask (1 where the receiver is valid),
+//           surface (the id of the surface seen, its index among the scene's
+//           surfaces, -1 where the view sees nothing: Pismo's surface ids,
+//           docs/pismo.md; FLOAT like the others, exact to 2^24)
 //   GT.exr  channel Y: the fraction of the light that reaches the receiver, in
 //           [0, 1]: the mean transmittance to the area light's samples, or the
 //           exact transmittance to a point light (one ray; --samples unused)
@@ -24,12 +27,12 @@
 
 namespace penumbra::cli {
 
-const std::vector<std::string> kReceiverChannels = {"u", "v", "z", "P.x", "P.y", "P.z", "N.x", "N.y", "N.z", "mask"};
+const std::vector<std::string> kReceiverChannels = {"u", "v", "z", "P.x", "P.y", "P.z", "N.x", "N.y", "N.z", "mask", "surface"};
 
 Image pack_receivers(const reference::Receivers& rx)
 {
     Image packed(rx.width(), rx.height(), int(kReceiverChannels.size()));
-    const Image* sources[] = {&rx.light_uvz, &rx.world_position, &rx.normal, &rx.mask};
+    const Image* sources[] = {&rx.light_uvz, &rx.world_position, &rx.normal, &rx.mask, &rx.surface};
     int c = 0;
     for (const Image* source : sources)
         for (int s = 0; s < source->channels(); ++s, ++c)

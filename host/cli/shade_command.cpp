@@ -6,7 +6,8 @@
 //           from --scene with cameras fitted to the receivers, or a directory
 //           from pismo-build, penumbra/pismo_files.h)
 //   RX.exr  float channels u, v, z: receivers' texture coordinates and depth
-//           (pismo: P.x, P.y, P.z, world positions, and N.x, N.y, N.z if present, as render-scene writes them)
+//           (pismo: P.x, P.y, P.z, world positions, and N.x, N.y, N.z and surface if present, as
+//           render-scene writes them)
 //   OUT.exr one float channel Y: visibility in [0, 1] on the receivers' grid
 // Output is written atomically: a failed run leaves no partial file and an
 // existing OUT.exr untouched.
@@ -23,6 +24,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <type_traits>
 
 #include "args.h"
 #include "commands.h"
@@ -57,7 +59,9 @@ std::string shade_help()
            "  SM.exr: float channel Z (or --depth-channel NAME, e.g. depth.Z or R), light depth in [0, 1], or in\n"
            "  the convention that --depth-convention names (near, far: the light's); RX.exr's z is in the same one;\n"
            "  DSM.exr: a deep OpenEXR file (dsm-build writes one);\n"
-           "  RX.exr: float channels u, v, z (pismo: P.x, P.y, P.z, world positions, and the normals N.x, N.y, N.z if present);\n"
+           "  RX.exr: float channels u, v, z (pismo: P.x, P.y, P.z, world positions, and the normals N.x, N.y, N.z and\n"
+           "  the surface ids, channel surface, if present: with maps that carry ids, a receiver's own surface never\n"
+           "  shadows it and other surfaces with a 1-texel bias; -1 or an absent channel, shaded without ids);\n"
            "  pismo renders its maps from --scene, cameras fitted to the receivers, or reads pismo-build's DIR:\n" +
            pismo_map_options_help() +
            "  OUT.exr: float channel Y, visibility in [0, 1] on the receivers' grid.\n"
@@ -91,6 +95,7 @@ struct ShadeFiles {
     std::string map, receivers;  // map: the file of the method's input (method_inputs())
     MethodInput input;
     std::string depth_channel = "Z";  // a shadow map's
+    std::vector<std::string> receiver_channels{};  // as read from the receivers' file
     DepthConvention convention{};     // a shadow map's, once the options are parsed
 };
 
@@ -163,9 +168,10 @@ std::string format_number(float value)
     if (!e.pixel()) throw Error(e.category(), "shade", path + ": " + e.message());
     static const char* const kReceiverChannels[] = {"u", "v", "z", "dzdu", "dzdv"};
     const BadPixel& bad = *e.pixel();
-    const std::string channel = is_map                                     ? files.depth_channel
-                                : files.input == MethodInput::PismoMapSet ? kWorldPositionChannels[bad.channel % 3]
-                                                                          : kReceiverChannels[bad.channel % 5];
+    const bool named = std::size_t(bad.channel) < files.receiver_channels.size();
+    const std::string channel = is_map  ? files.depth_channel
+                                : named ? files.receiver_channels[std::size_t(bad.channel)]
+                                        : kReceiverChannels[bad.channel % 5];
     const std::string where = path + ": channel " + channel +
                               " at pixel (" + std::to_string(bad.x) + ", " + std::to_string(bad.y) + ") is " +
                               std::to_string(bad.value);
@@ -195,16 +201,24 @@ Image read_input(const std::string& path, const std::vector<std::string>& channe
 }
 
 // The channels `shade` reads from RX.exr: the method's, and for Pismo the
-// normals N.x, N.y, N.z too when the file has them (render-scene writes them),
-// so that the receiver's own surface takes part (docs/pismo.md).
+// normals N.x, N.y, N.z and the surface ids when the file has them
+// (render-scene writes them), so that the receiver's own surface takes part
+// (docs/pismo.md).
 std::vector<std::string> receiver_channels_in(const ShadeFiles& files, const Method& method, const MethodSettings& s)
 {
-    std::vector<std::string> channels = receiver_channels(method, s);
-    if (method.input != MethodInput::PismoMapSet) return channels;
-    const std::vector<std::string> present = exr_channel_names(files.receivers, exr_limits());
-    const auto has = [&](const char* name) { return std::find(present.begin(), present.end(), name) != present.end(); };
-    if (has("N.x") && has("N.y") && has("N.z")) channels.insert(channels.end(), {"N.x", "N.y", "N.z"});
-    return channels;
+    if (method.input != MethodInput::PismoMapSet) return receiver_channels(method, s);
+    return pismo_receiver_channels(files.receivers, "shade");
+}
+
+// Receivers' surface ids are checked against the maps'; maps without ids
+// (a set written without them, as before pismo-build's format version 2)
+// shade them as unknown, and say so.
+void check_pismo_receivers(const Image& receivers, const PismoMapSet& set, const ShadeFiles& files)
+{
+    check_receiver_surfaces(receivers, set, files.receivers, "shade");
+    if (receivers.channels() == 7 && set.surface_ids.empty())
+        std::cerr << "penumbra shade: warning: " << files.receivers << " has surface ids but the maps carry none "
+                  << "(a set written without them, as before pismo-build's format version 2): shaded without ids\n";
 }
 
 // A deep map's reader names the file, the pixel and the sample; the line is the command's.
@@ -279,7 +293,10 @@ int shade_command(const std::vector<std::string>& argv)
         std::future<Context> starting = start_context(ContextOptions{backend, {}}, warm_up);
         const SetOnUnwind on_unwind{inputs_failed};
         const auto shade_from = [&](const auto& map) {  // a shadow map or a deep map, read first
-            const Image receivers = read_input(files.receivers, receiver_channels_in(files, *method, settings), "receivers image");
+            files.receiver_channels = receiver_channels_in(files, *method, settings);
+            const Image receivers = read_input(files.receivers, files.receiver_channels, "receivers image");
+            if constexpr (std::is_same_v<std::decay_t<decltype(map)>, PismoMapSet>)
+                check_pismo_receivers(receivers, map, files);
             Context context = start(starting);
             write_exr(out_path, method->run(context, map, receivers, settings), {"Y"});
         };

@@ -56,13 +56,26 @@ struct DeepLayout {
     bool tiled = false;
     int width = 0, height = 0;
     std::uint64_t bytes_per_sample = 0;  // every channel of the file, as stored
-    bool has_zback = false, has_a = false, has_t = false;
+    bool has_zback = false, has_a = false, has_t = false, has_ids = false;
     std::vector<ChunkClaim> chunks;
 };
 
 bool is_deep(exr_storage_t storage)
 {
     return storage == EXR_STORAGE_DEEP_SCANLINE || storage == EXR_STORAGE_DEEP_TILED;
+}
+
+// The kind's channel of ids: full resolution and UINT, so that every id is
+// exact (a float holds integers only to 2^24, a half to 2^11).
+void inspect_id_channel(const exr_attr_chlist_entry_t& e, const detail::DeepFileKind& kind, const std::string& path)
+{
+    const std::string name(kind.id_channel);
+    if (e.x_sampling != 1 || e.y_sampling != 1)
+        refuse(kind, path, "has a subsampled channel " + quoted(name) + "; its ids are one a sample");
+    if (e.pixel_type != EXR_PIXEL_UINT)
+        refuse(kind, path, "stores channel " + quoted(name) + " as " +
+                               (e.pixel_type == EXR_PIXEL_HALF ? "HALF" : "FLOAT") +
+                               "; its ids are UINT, exact integers (" + std::string(kind.writer) + " writes them so)");
 }
 
 // The channels the kind of file needs, their types, and the bytes of one sample.
@@ -76,6 +89,11 @@ void inspect_channels(const detail::CoreContext& core, const detail::DeepFileKin
         const exr_attr_chlist_entry_t& e = channels->entries[c];
         layout.bytes_per_sample += e.pixel_type == EXR_PIXEL_HALF ? 2 : 4;
         const std::string name(e.name.str, std::size_t(e.name.length));
+        if (!kind.id_channel.empty() && name == kind.id_channel) {
+            inspect_id_channel(e, kind, path);
+            layout.has_ids = true;
+            continue;
+        }
         const bool ours = name == "Z" || name == "ZBack" || name == "A" || name == kDeepTransmittanceChannel;
         if (!ours) continue;
         if (e.x_sampling != 1 || e.y_sampling != 1)
@@ -238,11 +256,13 @@ DeepSamples read_deep_samples(const std::string& path, const ExrReadLimits& limi
                                      sizeof(unsigned), sizeof(unsigned) * std::size_t(width));
         counts_frame.insertSampleCountSlice(count_slice);
         reader.read_counts(counts_frame);
-        samples.allocate(checked_sample_total(layout, samples.counts, kind, path), layout.has_zback, layout.has_a,
-                         layout.has_t);
+        const std::uint64_t total = checked_sample_total(layout, samples.counts, kind, path);
+        samples.allocate(total, layout.has_zback, layout.has_a, layout.has_t);
+        if (layout.has_ids) samples.ids.assign(total, 0), samples.has_ids = true;
 
         const int band_rows = reader.band_height();
         std::array<std::vector<float*>, 4> pointers;
+        std::vector<std::uint32_t*> id_pointers;
         for (int band = 0; band * band_rows < height; ++band) {
             const int y0 = band * band_rows, rows = std::min(band_rows, height - y0);
             Imf::DeepFrameBuffer frame;
@@ -257,6 +277,14 @@ DeepSamples read_deep_samples(const std::string& path, const ExrReadLimits& limi
                              Imf::DeepSlice(Imf::FLOAT, shifted(pointers[std::size_t(c)].data(), window,
                                                                 window.min.y + y0, width),
                                             sizeof(float*), sizeof(float*) * std::size_t(width), sizeof(float)));
+            }
+            if (samples.has_ids) {
+                id_pointers.resize(pixels);
+                for (std::size_t p = 0; p < pixels; ++p) id_pointers[p] = samples.ids.data() + samples.first[first + p];
+                frame.insert(std::string(kind.id_channel),
+                             Imf::DeepSlice(Imf::UINT, shifted(id_pointers.data(), window, window.min.y + y0, width),
+                                            sizeof(std::uint32_t*), sizeof(std::uint32_t*) * std::size_t(width),
+                                            sizeof(std::uint32_t)));
             }
             const std::vector<unsigned> counted(samples.counts.begin() + std::ptrdiff_t(first),
                                                 samples.counts.begin() + std::ptrdiff_t(first + pixels));

@@ -23,6 +23,8 @@ struct DeepSamples {
     std::vector<unsigned> counts;       // samples per pixel, row-major over the data window
     std::vector<std::uint64_t> first;   // per pixel, the index of its first sample
     std::vector<float> z, zback, a, t;  // zback, a and t stay empty when the file lacks them (or a is not read)
+    std::vector<std::uint32_t> ids;     // DeepFileKind::id_channel's samples, when read (has_ids)
+    bool has_ids = false;
     int origin_x = 0, origin_y = 0;     // the data window's top-left corner (file coordinates)
     int width = 0, height = 0;          // the data window's size
     bool has[4] = {};                   // channel(c) is read from the file (it may hold no sample)
@@ -36,14 +38,16 @@ struct DeepSamples {
 // What a reader of deep files reads: its operation (its errors name it), what
 // such a file holds and which command writes one (for the errors), and
 // whether A is required and read (deep shadow maps) or not (layered depth
-// maps, penumbra/layered_exr.h: Z alone).
+// maps, penumbra/layered_exr.h: Z alone), and the name of an optional UINT
+// channel of ids it reads too (layered maps: "surface"; empty: none).
 struct DeepFileKind {
     std::string_view operation, what, writer;
     bool needs_opacity;
+    std::string_view id_channel{};
 };
 
-// Every sample of the file's channels Z, ZBack, A (when kind.needs_opacity)
-// and penumbra.T, after the checks of deep_exr_read.cpp's header comment:
+// Every sample of the file's channels Z, ZBack, A (when kind.needs_opacity),
+// penumbra.T and kind.id_channel (which must be UINT), after the checks of deep_exr_read.cpp's header comment:
 // nothing is allocated on the file's word alone. `header`, when given, sees
 // the file's header (its attributes) before any sample is read. Error(Io)
 // naming the file and kind.operation.

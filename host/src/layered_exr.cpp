@@ -28,6 +28,8 @@ namespace {
 
 constexpr std::string_view kWrite = "write_layered_exr";
 constexpr detail::DeepFileKind kLayeredFile{"read_layered_exr", "a layered depth map", "penumbra pismo-build", false};
+constexpr detail::DeepFileKind kLayeredFileWithIds{"read_layered_exr", "a layered depth map", "penumbra pismo-build",
+                                                   false, kLayeredSurfaceChannel};
 constexpr int kScanlineBand = 64;  // rows per frame buffer (ZIPS chunks are one line)
 
 // The camera's attributes, in MapCamera's order.
@@ -37,11 +39,12 @@ constexpr const char* kTanHalfFov = "penumbra.tanHalfFov";
 
 std::array<std::array<double, 3>*, 4> axes(MapCamera& c) { return {&c.position, &c.right, &c.down, &c.forward}; }
 
-Imf::Header layered_header(const LayeredDepthMap& map)
+Imf::Header layered_header(const LayeredDepthMap& map, bool ids)
 {
     const Imath::Box2i window({0, 0}, {map.width() - 1, map.height() - 1});
     Imf::Header header(window, window, 1.0f, Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y, Imf::ZIPS_COMPRESSION);
     header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
+    if (ids) header.channels().insert(kLayeredSurfaceChannel, Imf::Channel(Imf::UINT));
     header.setType(Imf::DEEPSCANLINE);
     Imf::addDeepImageState(header, Imf::DIS_TIDY);  // point samples at increasing depths
     MapCamera camera = map.camera();
@@ -52,35 +55,47 @@ Imf::Header layered_header(const LayeredDepthMap& map)
     return header;
 }
 
-void write_layered_pixels(const std::string& temporary, const LayeredDepthMap& map)
+// A deep slice of one sample array: pixel p's samples start at base + offsets[p].
+template <class T>
+Imf::DeepSlice layer_slice(Imf::PixelType type, std::vector<T*>& pointers, T* base, const std::uint32_t* offsets,
+                           std::size_t pixels, std::ptrdiff_t shift, int width)
+{
+    pointers.assign(pixels, nullptr);
+    for (std::size_t p = 0; p < pixels; ++p) pointers[p] = base + offsets[p];
+    return Imf::DeepSlice(type, reinterpret_cast<char*>(pointers.data() - shift), sizeof(T*),
+                          sizeof(T*) * std::size_t(width), sizeof(T));
+}
+
+void write_layered_pixels(const std::string& temporary, const LayeredDepthMap& map,
+                          std::span<const std::int32_t> surface_ids)
 {
     detail::use_hardware_threads_for_exr();
-    const Imf::Header header = layered_header(map);
+    const Imf::Header header = layered_header(map, !surface_ids.empty());
     detail::CheckedOutputStream stream(temporary);
     {
         Imf::DeepScanLineOutputFile file(stream, header);
         const int width = map.width();
         std::vector<unsigned> counts;
         std::vector<float*> pointers;
-        // OpenEXR only reads through these pointers when writing.
+        std::vector<std::uint32_t*> id_pointers;
+        // OpenEXR only reads through these pointers when writing. Ids are >= 0: as UINT, the same values.
         float* depths = const_cast<float*>(map.depths().data());
+        auto* ids = reinterpret_cast<std::uint32_t*>(const_cast<std::int32_t*>(surface_ids.data()));
         for (int y0 = 0; y0 < map.height(); y0 += kScanlineBand) {
             const int y1 = std::min(map.height(), y0 + kScanlineBand);
             const std::size_t pixels = std::size_t(y1 - y0) * std::size_t(width);
             const std::uint32_t* offsets = map.offsets().data() + std::size_t(y0) * std::size_t(width);
             counts.assign(pixels, 0);
-            pointers.assign(pixels, nullptr);
-            for (std::size_t p = 0; p < pixels; ++p) {
-                counts[p] = offsets[p + 1] - offsets[p];
-                pointers[p] = depths + offsets[p];
-            }
+            for (std::size_t p = 0; p < pixels; ++p) counts[p] = offsets[p + 1] - offsets[p];
             // Absolute pixel addressing: shift the bases so that row y0 lands at element 0.
             const std::ptrdiff_t shift = std::ptrdiff_t(y0) * width;
             Imf::DeepFrameBuffer frame;
             frame.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data() - shift),
                                                     sizeof(unsigned), sizeof(unsigned) * std::size_t(width)));
-            frame.insert("Z", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(pointers.data() - shift),
-                                             sizeof(float*), sizeof(float*) * std::size_t(width), sizeof(float)));
+            frame.insert("Z", layer_slice(Imf::FLOAT, pointers, depths, offsets, pixels, shift, width));
+            if (ids)
+                frame.insert(kLayeredSurfaceChannel,
+                             layer_slice(Imf::UINT, id_pointers, ids, offsets, pixels, shift, width));
             file.setFrameBuffer(frame);
             file.writePixels(y1 - y0);
         }
@@ -112,33 +127,66 @@ MapCamera camera_from(const Imf::Header& header, const std::string& path)
 
 }  // namespace
 
-void write_layered_exr(const std::string& path, const LayeredDepthMap& map)
+void write_layered_exr(const std::string& path, const LayeredDepthMap& map, std::span<const std::int32_t> surface_ids)
 {
     OutputFiles output{std::string(kWrite)};
-    stage_layered_exr(output, path, map);
+    stage_layered_exr(output, path, map, surface_ids);
     output.publish();
 }
 
-void stage_layered_exr(OutputFiles& output, const std::string& path, const LayeredDepthMap& map)
+void stage_layered_exr(OutputFiles& output, const std::string& path, const LayeredDepthMap& map,
+                       std::span<const std::int32_t> surface_ids)
 {
     require(map.width() >= 1 && map.height() >= 1, kWrite, "map",
             "the map for '" + path + "' is empty; a deep EXR file needs at least one pixel");
+    require(surface_ids.empty() || surface_ids.size() == map.depths().size(), kWrite, "surface-ids",
+            "the map for '" + path + "' has " + std::to_string(map.depths().size()) + " layers but " +
+                std::to_string(surface_ids.size()) + " surface ids; give one id a layer, or none");
+    require(std::all_of(surface_ids.begin(), surface_ids.end(), [](std::int32_t id) { return id >= 0; }), kWrite,
+            "surface-ids", "the map for '" + path + "' has a negative surface id; ids are >= 0");
     require_safe_outputs({path}, {}, kWrite);
     output.stage(path, [&](const std::string& temporary) {
         detail::translating_exr_exceptions(kWrite, path, "; check free disk space and write permission",
-                                           [&] { write_layered_pixels(temporary, map); });
+                                           [&] { write_layered_pixels(temporary, map, surface_ids); });
     });
 }
 
-LayeredDepthMap read_layered_exr(const std::string& path, const ExrReadLimits& limits)
+namespace {
+
+// The ids as read, one a layer; above 2^31 - 1 is no id of a surface.
+std::vector<std::int32_t> ids_from(const detail::DeepSamples& s, const std::vector<std::uint32_t>& offsets,
+                                   const std::string& path)
+{
+    std::vector<std::int32_t> ids(s.ids.size());
+    for (std::size_t l = 0; l < s.ids.size(); ++l) {
+        if (s.ids[l] > std::uint32_t(std::numeric_limits<std::int32_t>::max())) {
+            const std::size_t p = std::size_t(std::upper_bound(offsets.begin(), offsets.end(), std::uint32_t(l)) -
+                                              offsets.begin()) - 1;
+            throw Error(ErrorCategory::InvalidData, kLayeredFile.operation,
+                        "'" + path + "' at pixel (" + std::to_string(p % std::size_t(s.width) + std::size_t(s.origin_x)) +
+                            ", " + std::to_string(p / std::size_t(s.width) + std::size_t(s.origin_y)) + "), layer " +
+                            std::to_string(l - offsets[p]) + ": surface id " + std::to_string(s.ids[l]) +
+                            " is above 2^31 - 1; re-create the map with penumbra pismo-build");
+        }
+        ids[l] = std::int32_t(s.ids[l]);
+    }
+    return ids;
+}
+
+}  // namespace
+
+LayeredDepthMap read_layered_exr(const std::string& path, const ExrReadLimits& limits,
+                                 std::vector<std::int32_t>* surface_ids)
 {
     MapCamera camera;
-    const detail::DeepSamples s = detail::read_deep_samples(
-        path, limits, kLayeredFile, [&](const Imf::Header& header) { camera = camera_from(header, path); });
+    const detail::DeepSamples s =
+        detail::read_deep_samples(path, limits, surface_ids ? kLayeredFileWithIds : kLayeredFile,
+                                  [&](const Imf::Header& header) { camera = camera_from(header, path); });
     if (s.z.size() > std::numeric_limits<std::uint32_t>::max())
         refuse(path, "holds more than 2^32 - 1 layers; a layered map's offsets are 32-bit");
     std::vector<std::uint32_t> offsets(s.counts.size() + 1, 0);
     for (std::size_t p = 0; p < s.counts.size(); ++p) offsets[p + 1] = offsets[p] + s.counts[p];
+    if (surface_ids) *surface_ids = ids_from(s, offsets, path);
     try {
         return LayeredDepthMap(s.width, s.height, camera, std::move(offsets), s.z);
     } catch (const Error& e) {

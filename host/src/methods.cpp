@@ -174,7 +174,10 @@ void shade_dsm(Context& context, const PreparedMap& prepared, const Image& recei
 template <PismoDepths Depths>
 PreparedMap prepare_pismo(Context&, const PismoMapSet& set, const MethodSettings&)
 {
-    return PreparedMap(set, PismoMaps(set.vertices, set.triangles, set.maps, Depths));
+    // The maximum-depth maps keep no surface's crossing: their layers carry no id.
+    return PreparedMap(set, PismoMaps(set.vertices, set.triangles, set.maps, Depths,
+                                      Depths == PismoDepths::Layered ? set.surface_ids
+                                                                     : std::vector<std::vector<std::int32_t>>{}));
 }
 
 void shade_pismo(Context& context, const PreparedMap& prepared, const Image& receivers, const MethodSettings& s,

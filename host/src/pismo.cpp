@@ -87,6 +87,24 @@ void check_receivers(const Image& receivers, const Image& out)
                 std::to_string(receivers.height()) + ")");
 }
 
+// A 7th plane holds the receivers' surface ids: -1 (unknown) or an integer
+// that a float holds exactly. Any other value would match no layer's id and
+// silently shade the receiver as if every layer were another surface.
+void check_receiver_ids(const Image& receivers)
+{
+    if (receivers.channels() != 7) return;
+    for (int y = 0; y < receivers.height(); ++y)
+        for (int x = 0; x < receivers.width(); ++x) {
+            const float id = receivers.at(6, x, y);
+            if (id == -1.0f || (id >= 0.0f && id <= float(kPismoMaxSurfaceId) && id == std::floor(id))) continue;
+            throw Error(ErrorCategory::InvalidData, kOperation, "receivers",
+                        "the surface id at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " +
+                            std::to_string(id) + "; an id is -1 (unknown) or an integer in [0, " +
+                            std::to_string(kPismoMaxSurfaceId) + "]",
+                        BadPixel{6, x, y, id});
+        }
+}
+
 // Surface ids, when given: one list a map, one id a layer, each in range; not
 // with the maximum-depth maps.
 void check_surface_ids(const std::vector<LayeredDepthMap>& maps, PismoDepths depths,
@@ -238,6 +256,7 @@ void detail::pismo_shade_rays(Context& context, const PismoMaps& maps, PismoRayT
 {
     require_maps(!maps.empty(), "no maps: build PismoMaps from a light mesh and its vertices' layered maps first");
     check_receivers(receivers, out);
+    check_receiver_ids(receivers);
     const Prepared s = prepare(maps, std::move(rays), bias_texels, receivers.channels());
     const std::size_t row_bytes = sizeof(float) * std::size_t(receivers.width()) * std::size_t(s.params.maps);
     const int rows = int(std::clamp<std::size_t>(estimate_bytes / row_bytes, 1, std::size_t(receivers.height())));

@@ -11,6 +11,7 @@
 #include "penumbra/input_file.h"
 #include "penumbra/layered_exr.h"
 #include "penumbra/output_files.h"
+#include "penumbra/pismo.h"
 
 namespace penumbra {
 namespace {
@@ -20,7 +21,9 @@ namespace fs = std::filesystem;
 
 constexpr std::string_view kWrite = "write_pismo_maps", kRead = "read_pismo_maps";
 constexpr const char* kFormat = "penumbra pismo maps";
-constexpr int kVersion = 1;
+// Version 2 added the surface ids ("surfaces" and each map's channel
+// surface); version 1 sets still read, as sets without ids.
+constexpr int kVersion = 2, kOldestVersion = 1;
 // A manifest of kPismoMaxVertices vertices and twice as many triangles, in
 // decimal with 17 digits, is under 1 MB.
 constexpr std::uint64_t kMaxManifestBytes = 16u << 20;
@@ -63,7 +66,32 @@ json manifest(const PismoMapSet& set)
     json names = json::array();
     for (std::size_t v = 0; v < set.maps.size(); ++v) names.push_back(map_name(v));
     j["maps"] = names;
+    if (!set.surface_ids.empty()) j["surfaces"] = set.surface_count;
     return j;
+}
+
+// Ids, when the set has them: a list a map, an id a layer, each below the
+// set's surface_count, itself in [1, kPismoMaxSurfaceId + 1].
+void check_ids_for_writing(const PismoMapSet& set)
+{
+    if (set.surface_ids.empty()) return;
+    const auto require_ids = [](bool ok, const std::string& message) { require(ok, kWrite, "surface-ids", message); };
+    require_ids(set.surface_count >= 1 && set.surface_count <= kPismoMaxSurfaceId + 1,
+                "surface_count " + std::to_string(set.surface_count) + " is outside [1, " +
+                    std::to_string(kPismoMaxSurfaceId + 1) + "]");
+    require_ids(set.surface_ids.size() == set.maps.size(), "there are " + std::to_string(set.surface_ids.size()) +
+                                                               " lists of surface ids for " +
+                                                               std::to_string(set.maps.size()) + " maps");
+    for (std::size_t v = 0; v < set.maps.size(); ++v) {
+        const std::vector<std::int32_t>& ids = set.surface_ids[v];
+        require_ids(ids.size() == set.maps[v].depths().size(),
+                    "map " + std::to_string(v) + " has " + std::to_string(set.maps[v].depths().size()) +
+                        " layers but " + std::to_string(ids.size()) + " surface ids");
+        for (std::int32_t id : ids)
+            require_ids(id >= 0 && id < set.surface_count, "map " + std::to_string(v) + " has surface id " +
+                                                               std::to_string(id) + ", outside [0, " +
+                                                               std::to_string(set.surface_count) + ")");
+    }
 }
 
 void check_for_writing(const PismoMapSet& set)
@@ -80,6 +108,7 @@ void check_for_writing(const PismoMapSet& set)
         require(set.maps[v].width() == set.maps[0].width() && set.maps[v].height() == set.maps[0].height(), kWrite,
                 "maps", "the maps must all have one size");
     }
+    check_ids_for_writing(set);
 }
 
 // Reading the manifest: every complaint names the file and the field.
@@ -156,8 +185,10 @@ ManifestContents read_manifest(const std::string& path)
     if (!format.is_string() || format.get<std::string>() != kFormat)
         m.fail(std::string("is not a manifest of Pismo's maps (its \"format\" is not \"") + kFormat + "\")");
     const json& version = m.field(j, "version");
-    if (!version.is_number_integer() || version.get<std::int64_t>() != kVersion)
-        m.fail("has version " + version.dump() + "; this penumbra reads version " + std::to_string(kVersion));
+    if (!version.is_number_integer() || version.get<std::int64_t>() < kOldestVersion ||
+        version.get<std::int64_t>() > kVersion)
+        m.fail("has version " + version.dump() + "; this penumbra reads versions " + std::to_string(kOldestVersion) +
+               " to " + std::to_string(kVersion));
     const json &vertices = m.array(j, "vertices"), &triangles = m.array(j, "triangles"), &maps = m.array(j, "maps");
     if (const std::string problem = set_problem(vertices.size(), triangles.size(), maps.size()); !problem.empty())
         m.fail(problem);
@@ -171,12 +202,34 @@ ManifestContents read_manifest(const std::string& path)
     if (const auto s = j.find("scene"); s != j.end() && s->is_string()) out.set.scene = s->get<std::string>();
     if (const auto l = j.find("level"); l != j.end() && l->is_number_integer()) out.set.level = l->get<int>();
     if (const auto f = j.find("fixation"); f != j.end()) out.set.fixation = m.point(*f, "fixation");
+    if (const auto n = j.find("surfaces"); n != j.end() && version.get<std::int64_t>() >= 2) {
+        if (!n->is_number_integer() || n->get<std::int64_t>() < 1 || n->get<std::int64_t>() > kPismoMaxSurfaceId + 1)
+            m.fail("field \"surfaces\" is " + n->dump() + ", not a count of surfaces in [1, " +
+                   std::to_string(kPismoMaxSurfaceId + 1) + "]");
+        out.set.surface_count = n->get<int>();
+    }
     return out;
 }
 
 [[noreturn]] void bad_map(const std::string& path, const std::string& what)
 {
     throw Error(ErrorCategory::InvalidData, kRead, "'" + path + "' " + what + "; re-create the set with penumbra pismo-build");
+}
+
+// A map's ids, when the manifest counts surfaces: present, and each below the count.
+void check_map_ids(const std::string& path, const LayeredDepthMap& map, const std::vector<std::int32_t>& ids,
+                   int surface_count)
+{
+    if (ids.size() != map.depths().size())
+        bad_map(path, "has no channel surface, which its manifest's \"surfaces\" promises");
+    const std::vector<std::uint32_t>& offsets = map.offsets();
+    for (std::size_t p = 0; p + 1 < offsets.size(); ++p)
+        for (std::uint32_t l = offsets[p]; l < offsets[p + 1]; ++l)
+            if (ids[l] >= surface_count)
+                bad_map(path, "at pixel (" + std::to_string(p % std::size_t(map.width())) + ", " +
+                                  std::to_string(p / std::size_t(map.width())) + "), layer " +
+                                  std::to_string(l - offsets[p]) + ": surface id " + std::to_string(ids[l]) +
+                                  " is not below the manifest's \"surfaces\", " + std::to_string(surface_count));
 }
 
 }  // namespace
@@ -186,7 +239,8 @@ void write_pismo_maps(const std::string& dir, const PismoMapSet& set)
     check_for_writing(set);
     OutputFiles output{std::string(kWrite)};
     for (std::size_t v = 0; v < set.maps.size(); ++v)
-        stage_layered_exr(output, (fs::path(dir) / map_name(v)).string(), set.maps[v]);
+        stage_layered_exr(output, (fs::path(dir) / map_name(v)).string(), set.maps[v],
+                          set.surface_ids.empty() ? std::span<const std::int32_t>{} : set.surface_ids[v]);
     const std::string path = (fs::path(dir) / kPismoManifest).string();
     require_safe_outputs({path}, {}, kWrite);
     const std::string text = manifest(set).dump(1) + "\n";
@@ -207,7 +261,9 @@ PismoMapSet read_pismo_maps(const std::string& dir, const ExrReadLimits& limits)
     ExrReadLimits left = limits;  // the pixels of all maps together
     for (std::size_t v = 0; v < contents.files.size(); ++v) {
         const std::string path = (fs::path(dir) / contents.files[v]).string();
-        LayeredDepthMap map = read_layered_exr(path, left);
+        const bool with_ids = set.surface_count > 0;
+        std::vector<std::int32_t> ids;
+        LayeredDepthMap map = read_layered_exr(path, left, with_ids ? &ids : nullptr);
         left.max_pixels -= std::uint64_t(map.width()) * std::uint64_t(map.height());
         if (!near_vertex(map.camera().position, set.vertices[v]))
             bad_map(path, "has its camera away from vertex " + std::to_string(v) + " of " + manifest_path);
@@ -215,6 +271,7 @@ PismoMapSet read_pismo_maps(const std::string& dir, const ExrReadLimits& limits)
             bad_map(path, "is " + std::to_string(map.width()) + " x " + std::to_string(map.height()) + ", not " +
                               std::to_string(set.maps[0].width()) + " x " + std::to_string(set.maps[0].height()) +
                               " as the first map: the maps of a set have one size");
+        if (with_ids) check_map_ids(path, map, ids, set.surface_count), set.surface_ids.push_back(std::move(ids));
         set.maps.push_back(std::move(map));
     }
     return std::move(set);

@@ -271,6 +271,8 @@ PismoMapSet render_pismo_map_set(const Scene& scene, int level, const LayeredMap
     for (const Vec3& v : maps.mesh.vertices) set.vertices.push_back(to_array(v));
     set.triangles = std::move(maps.mesh.triangles);
     set.maps = std::move(maps.maps);
+    set.surface_ids = std::move(maps.surface_ids);
+    set.surface_count = int(scene_surfaces(scene).size());
     set.scene = scene.name, set.level = level, set.fixation = to_array(maps.fixation);
     return set;
 }

@@ -24,6 +24,8 @@ void expect_same_set(const PismoMapSet& a, const PismoMapSet& b)
 {
     EXPECT_EQ(a.vertices, b.vertices);
     EXPECT_EQ(a.triangles, b.triangles);
+    EXPECT_EQ(a.surface_ids, b.surface_ids);  // each layer's surface id, stored since format version 2
+    EXPECT_EQ(a.surface_count, b.surface_count);
     ASSERT_EQ(a.maps.size(), b.maps.size());
     for (std::size_t v = 0; v < a.maps.size(); ++v) {
         EXPECT_EQ(a.maps[v].offsets(), b.maps[v].offsets()) << v;

@@ -81,8 +81,8 @@ TEST_F(PismoShadeCli, TheToolsImageIsTheLibrarysOnTheSameMaps)
     o.max_layers = 4;
     const PismoMapSet set = reference::render_pismo_map_set(scene, 0, o, reference::receiver_region(rx));
     Context ctx(ContextOptions{Backend::Scalar, {}});
-    // render-scene's RX.exr has the normals: the tool reads them with the positions.
-    const Image positions = read_exr(path("rx.exr"), {"P.x", "P.y", "P.z", "N.x", "N.y", "N.z"});
+    // render-scene's RX.exr has the normals and the surface ids: the tool reads them with the positions.
+    const Image positions = read_exr(path("rx.exr"), {"P.x", "P.y", "P.z", "N.x", "N.y", "N.z", "surface"});
     for (const char* method : {"pismo", "pismo-maxdepth"}) {
         const testing::CliRun run = run_cli({"shade", "--method", method, "--scene", "contact", "--receivers",
                                              path("rx.exr"), "--out", path("out.exr"), "--light-level", "0",

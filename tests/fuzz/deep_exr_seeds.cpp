@@ -1,14 +1,17 @@
 // Writes the seed corpus of deep_exr_reader_fuzz (run by make_corpus.sh): small
 // deep files as penumbra writes them (scanline, tiled; steps, slopes, empty and
 // opaque pixels) and as another renderer might (point samples without ZBack,
-// HALF opacity, colour channels, RLE and no compression, gaps between samples).
+// HALF opacity, colour channels, RLE and no compression, gaps between samples),
+// and a layered depth map of Pismo with its surface ids (a UINT channel).
 //
 //   deep_exr_seeds OUT_DIR
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "penumbra/deep_exr.h"
+#include "penumbra/layered_exr.h"
 #include "support/deep_files.h"
 
 namespace {
@@ -46,6 +49,19 @@ void write_foreign(const std::string& path, Imf::Compression compression, bool z
     penumbra::testing::write_raw_deep(path, raw);
 }
 
+// Pixel p holds p % 4 layers, each with a surface id.
+void write_layered_with_ids(const std::string& path, int width, int height)
+{
+    penumbra::LayeredDepthMapBuilder builder(width, height, penumbra::MapCamera{});
+    std::vector<std::int32_t> ids;
+    for (int p = 0; p < width * height; ++p) {
+        std::vector<float> layers;
+        for (int k = 0; k < p % 4; ++k) layers.push_back(1.0f + float(p) + 0.5f * float(k)), ids.push_back(k + p % 3);
+        builder.add_pixel(layers);
+    }
+    penumbra::write_layered_exr(path, builder.build(), ids);
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -59,5 +75,6 @@ int main(int argc, char** argv)
     penumbra::write_deep_exr(out + "/deep_tiled.exr", seed_map(7, 5), {penumbra::DeepExrLayout::Tiled, 4});
     write_foreign(out + "/foreign_points_rle.exr", Imf::RLE_COMPRESSION, false);
     write_foreign(out + "/foreign_volumes_none.exr", Imf::NO_COMPRESSION, true);
+    write_layered_with_ids(out + "/layered_ids.exr", 7, 5);
     return 0;
 }

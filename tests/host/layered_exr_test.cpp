@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <vector>
 
 #include "penumbra/deep_exr.h"
@@ -102,12 +103,17 @@ TEST_F(LayeredExr, OpenExrReadsTheLayersAsZSamples)
     for (int p = 0; p < 12; ++p) EXPECT_EQ(counts[std::size_t(p)], unsigned(p % 5)) << p;
 }
 
-// A deep file with Z samples `z` in its one pixel and, unless told, the camera.
-void write_file(const std::string& path, std::vector<float> z, bool with_camera, MapCamera camera = tilted_camera())
+// A deep file with Z samples `z` in its one pixel and, unless told, the camera;
+// `extra` channels (FLOAT unless typed in `types`) beside Z.
+void write_file(const std::string& path, std::vector<float> z, bool with_camera, MapCamera camera = tilted_camera(),
+                const std::map<std::string, std::vector<float>>& extra = {},
+                const std::map<std::string, Imf::PixelType>& types = {})
 {
     RawDeep raw(1, 1);
     raw.channels = {"Z"};
     raw.at(0, 0)["Z"] = z;
+    for (const auto& [name, values] : extra) raw.channels.push_back(name), raw.at(0, 0)[name] = values;
+    raw.types = types;
     if (with_camera)
         raw.edit_header = [camera](Imf::Header& h) {
             const std::array<double, 3> axes[4] = {camera.position, camera.right, camera.down, camera.forward};
@@ -158,6 +164,58 @@ TEST_F(LayeredExr, BadFilesAreRefusedNamingTheFile)
     std::filesystem::copy_file(path("whole.exr"), path("cut.exr"));
     std::filesystem::resize_file(path("cut.exr"), std::filesystem::file_size(path("whole.exr")) / 2);
     refused("cut.exr", ErrorCategory::Io, "cut.exr");
+}
+
+// One id a layer, past a float's exact range (2^24) too.
+std::vector<std::int32_t> ids_of(const LayeredDepthMap& map)
+{
+    std::vector<std::int32_t> ids(map.depths().size());
+    for (std::size_t l = 0; l < ids.size(); ++l) ids[l] = std::int32_t((std::uint64_t(l) * 2654435761u) % 2147483647u);
+    return ids;
+}
+
+TEST_F(LayeredExr, SurfaceIdsRoundTripExactlyInAUintChannel)
+{
+    std::vector<std::int32_t> back;
+    for (auto [w, h] : {std::pair{1, 1}, {7, 3}, {17, 65}}) {
+        const LayeredDepthMap map = layered_map(w, h);
+        const std::vector<std::int32_t> ids = ids_of(map);
+        write_layered_exr(path("map.exr"), map, ids);
+        expect_identical(read_layered_exr(path("map.exr"), {}, &back), map);
+        EXPECT_EQ(back, ids) << w << "x" << h;
+        expect_identical(read_layered_exr(path("map.exr")), map);  // not asked for: not read
+    }
+    Imf::DeepScanLineInputFile file(path("map.exr").c_str());
+    ASSERT_NE(file.header().channels().findChannel("surface"), nullptr);
+    EXPECT_EQ(file.header().channels().findChannel("surface")->type, Imf::UINT);
+    write_layered_exr(path("plain.exr"), layered_map(7, 3));
+    back = {1, 2};
+    (void)read_layered_exr(path("plain.exr"), {}, &back);
+    EXPECT_TRUE(back.empty()) << "a file without the channel has no ids";
+}
+
+TEST_F(LayeredExr, BadSurfaceIdsAreRefused)
+{
+    std::vector<std::int32_t> ids;
+    const auto refused = [&](const std::string& name, ErrorCategory category, const std::string& needle) {
+        expect_error([&] { (void)read_layered_exr(path(name), {}, &ids); }, category, "read_layered_exr", {name, needle});
+    };
+    write_file(path("float_ids.exr"), {1.0f, 2.0f}, true, tilted_camera(), {{"surface", {3.0f, 4.0f}}});
+    refused("float_ids.exr", ErrorCategory::Io, "as FLOAT; its ids are UINT");
+    EXPECT_NO_THROW((void)read_layered_exr(path("float_ids.exr"))) << "ids not asked for: the channel is ignored";
+    write_file(path("huge_ids.exr"), {1.0f, 2.0f}, true, tilted_camera(), {{"surface", {3.0f, 3e9f}}},
+               {{"surface", Imf::UINT}});
+    refused("huge_ids.exr", ErrorCategory::InvalidData, "pixel (0, 0), layer 1: surface id 3000000000");
+    const LayeredDepthMap map = layered_map(7, 3);
+    std::vector<std::int32_t> wrong = ids_of(map);
+    wrong.pop_back();
+    expect_error([&] { write_layered_exr(path("w.exr"), map, wrong); }, ErrorCategory::InvalidArgument,
+                 "write_layered_exr", {"surface ids"});
+    wrong = ids_of(map);
+    wrong[2] = -1;
+    expect_error([&] { write_layered_exr(path("w.exr"), map, wrong); }, ErrorCategory::InvalidArgument,
+                 "write_layered_exr", {"negative"});
+    EXPECT_FALSE(std::filesystem::exists(path("w.exr")));
 }
 
 TEST_F(LayeredExr, AnEmptyMapIsNotWritten)

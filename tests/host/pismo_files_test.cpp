@@ -4,6 +4,7 @@
 // set that cannot be read back is not written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -76,7 +77,8 @@ TEST_F(PismoFiles, BadManifestsAreRefused)
     };
     const std::vector<std::pair<json, std::string>> cases = {
         {with("format", "penumbra deep map"), "not a manifest"},
-        {with("version", 2), "version 2"},
+        {with("version", 3), "version 3"},
+        {with("version", 0), "version 0"},
         {with("vertices", json::array()), "0 vertices"},
         {with("vertices", "many"), "not an array"},
         {with("maps", json::array({"map-0000.exr"})), "1 maps for 4 vertices"},
@@ -111,6 +113,78 @@ TEST_F(PismoFiles, BadMapsAreRefusedNamingTheMap)
     std::filesystem::copy_file(path("other/map-0001.exr"), path("set/map-0001.exr"),
                                std::filesystem::copy_options::overwrite_existing);
     expect_refused(ErrorCategory::InvalidData, "one size");
+}
+
+// A set rendered from a scene carries each layer's surface id (version 2).
+TEST_F(PismoFiles, SurfaceIdsRoundTripAndAVersionOneSetReadsWithoutThem)
+{
+    const PismoMapSet set = contact_set(1, 13);
+    ASSERT_EQ(set.surface_ids.size(), 9u);
+    ASSERT_EQ(set.surface_count, int(reference::scene_surfaces(reference::builtin_scene("contact")).size()));
+    write_pismo_maps(path("set"), set);
+    EXPECT_EQ(manifest()["version"], 2);
+    EXPECT_EQ(manifest()["surfaces"], set.surface_count);
+    const PismoMapSet back = read_pismo_maps(path("set"));
+    EXPECT_EQ(back.surface_count, set.surface_count);
+    EXPECT_EQ(back.surface_ids, set.surface_ids);
+    // Version 1: no "surfaces", maps without the channel; read as a set without ids.
+    PismoMapSet plain = set;
+    plain.surface_ids.clear(), plain.surface_count = 0;
+    write_pismo_maps(path("set"), plain);
+    json j = manifest();
+    EXPECT_FALSE(j.contains("surfaces"));
+    j["version"] = 1;
+    rewrite(j);
+    const PismoMapSet old = read_pismo_maps(path("set"));
+    EXPECT_TRUE(old.surface_ids.empty());
+    EXPECT_EQ(old.surface_count, 0);
+    EXPECT_EQ(old.maps[4].depths(), set.maps[4].depths());
+}
+
+TEST_F(PismoFiles, BadSurfaceIdsAreRefusedNamingTheFile)
+{
+    const PismoMapSet set = contact_set(0, 9);
+    const json good = manifest();
+    for (const json& count : {json(0), json(-1), json("six"), json(1.5), json((1 << 24) + 1)}) {
+        json j = good;
+        j["surfaces"] = count;
+        rewrite(j);
+        expect_refused(ErrorCategory::Io, "field \"surfaces\" is " + count.dump());
+    }
+    // A count below a layer's id: the map, the pixel and the layer named.
+    std::int32_t largest = 0;
+    for (const auto& ids : set.surface_ids)
+        for (std::int32_t id : ids) largest = std::max(largest, id);
+    ASSERT_GE(largest, 1);
+    json j = good;
+    j["surfaces"] = largest;
+    rewrite(j);
+    expect_refused(ErrorCategory::InvalidData, "is not below the manifest's \"surfaces\"");
+    expect_refused(ErrorCategory::InvalidData, ", layer ");
+    // "surfaces" promised, a map without the channel.
+    rewrite(good);
+    PismoMapSet plain = set;
+    plain.surface_ids.clear(), plain.surface_count = 0;
+    std::filesystem::create_directories(path("plain"));
+    write_pismo_maps(path("plain"), plain);
+    std::filesystem::copy_file(path("plain/map-0000.exr"), path("set/map-0000.exr"),
+                               std::filesystem::copy_options::overwrite_existing);
+    ASSERT_FALSE(set.maps[0].depths().empty()) << "a map without layers needs no ids";
+    expect_refused(ErrorCategory::InvalidData, "map-0000.exr' has no channel surface");
+    // Ids that could not be read back are not written.
+    const std::size_t v = std::size_t(std::find_if(set.surface_ids.begin(), set.surface_ids.end(),
+                                                   [](const auto& ids) { return !ids.empty(); }) -
+                                      set.surface_ids.begin());
+    ASSERT_LT(v, set.surface_ids.size()) << "no map has a layer";
+    PismoMapSet bad = set;
+    bad.surface_ids[v][0] = bad.surface_count;
+    expect_error([&] { write_pismo_maps(path("bad"), bad); }, ErrorCategory::InvalidArgument, "write_pismo_maps",
+                 {"outside [0, "});
+    bad = set;
+    bad.surface_ids[v].pop_back();
+    expect_error([&] { write_pismo_maps(path("bad"), bad); }, ErrorCategory::InvalidArgument, "write_pismo_maps",
+                 {"surface ids"});
+    EXPECT_FALSE(std::filesystem::exists(path("bad")));
 }
 
 TEST_F(PismoFiles, ThePixelBudgetCoversEveryMap)

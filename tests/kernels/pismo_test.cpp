@@ -557,6 +557,13 @@ TEST_F(PismoBadInput, ReceiversAndOutput)
     Image rx = c.receivers.world_position;
     rx.at(1, 3, 7) = std::nanf("");
     testing::expect_error([&] { pismo_shade(ctx, maps, rx); }, ErrorCategory::InvalidData, "pismo", {"(3, 7)"});
+    // A 7th plane of surface ids: -1 or an integer a float holds exactly, else the pixel is named.
+    for (float id : {-2.0f, 2.5f, std::nanf(""), float(kPismoMaxSurfaceId) + 1.0f}) {
+        Image rx7 = c.receivers.positions_normals_and_surface();
+        rx7.at(6, 2, 5) = id;
+        testing::expect_error([&] { pismo_shade(ctx, maps, rx7); }, ErrorCategory::InvalidData, "pismo",
+                              {"surface id at pixel (2, 5)"});
+    }
 }
 
 }  // namespace

@@ -23,6 +23,8 @@ cd "$work"
   --map-size 64 --view-size 16x12 --samples 4 >/dev/null
 "$cli" sdf-bake --scene fence --out ok/fence.pnsdf --voxel 0.5 >/dev/null
 "$cli" dsm-build --scene layers --out ok/dsm.exr --size 16 --samples 4 >/dev/null
+mkdir -p ok/pismo
+"$cli" pismo-build --scene contact --out ok/pismo --light-level 0 --map-size 16 --receivers ok/rx.exr >/dev/null
 mkdir -p bad
 : >bad/empty.exr
 head -c 1000 ok/shadow_map.exr >bad/truncated.exr
@@ -38,6 +40,12 @@ echo '{"primitives": [' >bad/truncated.json
 echo '{"map_size": 1e999}' >bad/overflow.json
 echo '[]' >bad/array.json
 printf 'x%.0s' {1..300} >bad/long-name
+# Pismo's maps with a bit-flipped map file (its ids channel among the bytes),
+# and a manifest whose surface count does not cover the maps' ids.
+cp -r ok/pismo bad/pismo-flipped
+printf '\xff\xff\xff\xff' | dd of=bad/pismo-flipped/map-0001.exr bs=1 seek=600 conv=notrunc status=none
+cp -r ok/pismo bad/pismo-count
+sed -i 's/"surfaces": [0-9]*/"surfaces": 1/' bad/pismo-count/pismo.json
 
 sm=ok/shadow_map.exr rx=ok/receivers.exr
 runs=(
@@ -62,6 +70,10 @@ runs=(
   "shade --method dsm --deep-map bad/flipped.exr --receivers $rx --out o.exr"
   "shade --method dsm --deep-map ok/dsm.exr --receivers bad/flipped.exr --out o.exr --filter tent --radius 2"
   "shade --method dsm --shadow-map $sm --receivers $rx --out o.exr"
+  "shade --method pismo --pismo-maps ok/pismo --receivers ok/rx.exr --out o.exr --rays 4"
+  "shade --method pismo --pismo-maps bad/pismo-flipped --receivers ok/rx.exr --out o.exr --rays 4"
+  "shade --method pismo --pismo-maps bad/pismo-count --receivers ok/rx.exr --out o.exr --rays 4"
+  "shade --method pismo --scene contact --map-size 16 --receivers bad/flipped.exr --out o.exr --rays 4"
   "blur --in $sm --guide bad/truncated.exr --out o.exr"
   "blur --in $sm --guide $rx --out o.exr --radius 100000"
   "sdf-shade --grid bad/wrap.pnsdf --receivers ok/rx.exr --out o.exr --k 2 --light-direction 0,1,0"

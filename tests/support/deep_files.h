@@ -49,11 +49,13 @@ inline void write_raw_deep(const std::string& path, RawDeep raw)
     const std::size_t pixels = raw.pixels.size();
     std::vector<unsigned> counts(pixels, 0);
     std::map<std::string, std::vector<char*>> pointers;
-    // Converted per type: HALF channels from half buffers.
+    // Converted per type: HALF channels from half buffers, UINT from unsigned ones.
     std::map<std::string, std::vector<std::vector<half>>> halves;
+    std::map<std::string, std::vector<std::vector<unsigned>>> uints;
     for (const std::string& name : raw.channels) {
         pointers[name].resize(pixels, nullptr);
         halves[name].resize(pixels);
+        uints[name].resize(pixels);
     }
     for (std::size_t p = 0; p < pixels; ++p)
         for (const std::string& name : raw.channels) {
@@ -63,6 +65,9 @@ inline void write_raw_deep(const std::string& path, RawDeep raw)
             if (type != raw.types.end() && type->second == Imf::HALF) {
                 halves[name][p].assign(values.begin(), values.end());
                 pointers[name][p] = reinterpret_cast<char*>(halves[name][p].data());
+            } else if (type != raw.types.end() && type->second == Imf::UINT) {
+                for (float v : values) uints[name][p].push_back(unsigned(v));
+                pointers[name][p] = reinterpret_cast<char*>(uints[name][p].data());
             } else {
                 pointers[name][p] = reinterpret_cast<char*>(values.data());
             }
@@ -72,11 +77,10 @@ inline void write_raw_deep(const std::string& path, RawDeep raw)
                                             sizeof(unsigned) * std::size_t(raw.width)));
     for (const std::string& name : raw.channels) {
         const auto type = raw.types.find(name);
-        const bool is_half = type != raw.types.end() && type->second == Imf::HALF;
-        frame.insert(name, Imf::DeepSlice(is_half ? Imf::HALF : Imf::FLOAT,
-                                          reinterpret_cast<char*>(pointers[name].data()), sizeof(char*),
+        const Imf::PixelType stored = type == raw.types.end() ? Imf::FLOAT : type->second;
+        frame.insert(name, Imf::DeepSlice(stored, reinterpret_cast<char*>(pointers[name].data()), sizeof(char*),
                                           sizeof(char*) * std::size_t(raw.width),
-                                          is_half ? sizeof(half) : sizeof(float)));
+                                          stored == Imf::HALF ? sizeof(half) : sizeof(float)));
     }
     if (raw.tile) {
         Imf::DeepTiledOutputFile file(path.c_str(), header);

@@ -108,8 +108,9 @@ struct PismoOptions {
 // Throws Error(InvalidArgument) naming the parameter: rays, bias-texels,
 // maps (empty), receivers (3 channels x, y, z, world positions, or 6: then
 // the normals' x, y, z, and the receiver's own surface takes part, or 7: then
-// the id of the receiver's surface, < 0 unknown, used when the maps carry
-// surface ids; not empty, finite), out (1 channel of the receivers' size).
+// the id of the receiver's surface, -1 unknown, used when the maps carry
+// surface ids: an integer in [-1, kPismoMaxSurfaceId], else InvalidData naming
+// the pixel; not empty, finite), out (1 channel of the receivers' size).
 void pismo_shade(Context& context, const PismoMaps& maps, const Image& receivers, const PismoOptions& options,
                  Image& out);
 Image pismo_shade(Context& context, const PismoMaps& maps, const Image& receivers, const PismoOptions& options = {});
