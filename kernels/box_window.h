@@ -48,6 +48,27 @@ PN_FN TexelWindow texel_window(pn_dims t, pn_float u, pn_float v, int radius)
     return texel_window_xy(t, u, v, radius, radius);
 }
 
+/* The lowest and highest v of receiver rows [y0, y1), clamped into [0, 1]
+ * as the lookups' receivers are (load_checked_receiver), lane by lane into
+ * `low` and `high` at (0, 0) of dims `strip` (one strip: the caller takes
+ * the lanes' extremes). The map rows a band of direct sums reads follow from
+ * them (texel_window_xy's rows; simd/cpu_direct_sums.cpp). The row is read
+ * clamped to its width, so that no lane past it reads as v = 0. */
+PN_FN void receiver_v_bounds(PN_GLOBAL const float* receivers, pn_dims d, int y0, int y1, PN_GLOBAL float* low,
+                             PN_GLOBAL float* high, pn_dims strip)
+{
+    pn_float lowest = 1.0f, highest = 0.0f;
+    for (int y = y0; y < y1; ++y)
+        PN_FOR_STRIPS(x, 0, d.width)
+        {
+            const pn_float v = pn_clamp(pn_load_clamped(PN_PLANE(receivers, d, 1), d, x, y), 0.0f, 1.0f);
+            lowest = pn_min(lowest, v);
+            highest = pn_max(highest, v);
+        }
+    pn_store(low, strip, 0, 0, lowest);
+    pn_store(high, strip, 0, 0, highest);
+}
+
 /* The opening of the box-window lookups (vsm, msm, evsm): PN_LOOKUP_BEGIN
  * (kernels/chebyshev.h), then the receiver's window `w`. */
 #define PN_BOX_LOOKUP_BEGIN(r, w) \

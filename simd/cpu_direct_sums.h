@@ -42,7 +42,9 @@ bool converts_per_band(const Params& p)
 struct MapRows {
     int first = 0, last = 0;
 };
-bool band_map_rows(const Image& receivers, pn_dims map, int radius, int y0, int y1, MapRows& rows);
+inline constexpr int kMaxLanes = 64;  // above any strip receiver_v_bounds writes (AVX-512: 16 floats)
+bool band_map_rows(const CpuKernels& kernels, const Image& receivers, pn_dims map, int radius, int y0, int y1,
+                   MapRows& rows);
 
 // Map rows `rows` converted into `buffer`: the DirectMap that reads them as
 // normalised depth.
@@ -62,7 +64,7 @@ void launch_direct_sums(const CpuKernels& kernels, const float* map, const Image
         Params q = p;
         const float* source = map;
         MapRows rows;
-        if (band_map_rows(receivers, p.table, p.radius, y0, y1, rows)) {
+        if (band_map_rows(kernels, receivers, p.table, p.radius, y0, y1, rows)) {
             std::vector<float>& buffer = buffers.local();
             q.direct = convert_map_rows(kernels, map, p.direct, rows, buffer);
             source = buffer.data();

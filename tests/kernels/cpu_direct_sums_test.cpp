@@ -102,18 +102,20 @@ template <KernelId K>
 void expect_bands_equal_taps_at_odd_sizes()
 {
     for (int radius : {1, 2}) {
-        expect_bands_equal_taps<K>(testing::random_depth(1, 1, 3), testing::receivers_on_texels(1, 1, 1, 1, 0.1f, 0.9f, 4),
-                                   radius, "1x1");
-        expect_bands_equal_taps<K>(testing::random_depth(7, 3, 5), testing::receivers_on_texels(7, 3, 7, 3, 0.1f, 0.9f, 6),
-                                   radius, "7x3");
+        expect_bands_equal_taps<K>(testing::random_depth(1, 1, 3),
+                                   testing::receivers_on_texels(1, 1, 1, 1, 0.1f, 0.9f, 4), radius, "1x1");
+        expect_bands_equal_taps<K>(testing::random_depth(7, 3, 5),
+                                   testing::receivers_on_texels(7, 3, 7, 3, 0.1f, 0.9f, 6), radius, "7x3");
         for (int width : {15, 16, 17, 33}) {
             // One receiver per texel over 70 rows: three bands, each converting its rows.
             const Image map = testing::random_depth(width, 70, 7 + width);
             const Image rx = testing::receivers_on_texels(width, 70, width, 70, 0.1f, 0.9f, 8);
-            cpu::MapRows rows;
-            ASSERT_TRUE(cpu::band_map_rows(rx, detail::dims_of(map), radius, 32, 64, rows));
-            EXPECT_EQ(rows.first, 32 - radius);
-            EXPECT_EQ(rows.last, 64 + radius);
+            for (const std::string& isa : cpu_tables()) {
+                cpu::MapRows rows;
+                ASSERT_TRUE(cpu::band_map_rows(cpu::kernels_for(isa), rx, detail::dims_of(map), radius, 32, 64, rows));
+                EXPECT_EQ(rows.first, 32 - radius) << isa;
+                EXPECT_EQ(rows.last, 64 + radius) << isa;
+            }
             expect_bands_equal_taps<K>(map, rx, radius, "width " + std::to_string(width));
         }
     }
@@ -133,8 +135,10 @@ TEST(DirectSumBands, ScatteredReceiversKeepThePerTapConversion)
     const Image map = testing::random_depth(64, 64, 9);
     Image rx = testing::receivers_on_texels(16, 1, 64, 64, 0.1f, 0.9f, 10);
     for (int x = 0; x < 16; ++x) rx.at(1, x, 0) = float(x) / 15.0f;
-    cpu::MapRows rows;
-    EXPECT_FALSE(cpu::band_map_rows(rx, detail::dims_of(map), 1, 0, 1, rows));
+    for (const std::string& isa : cpu_tables()) {
+        cpu::MapRows rows;
+        EXPECT_FALSE(cpu::band_map_rows(cpu::kernels_for(isa), rx, detail::dims_of(map), 1, 0, 1, rows)) << isa;
+    }
 }
 
 // The tail lanes of a row (u = v = 0 beyond the width) in a band whose
