@@ -167,7 +167,8 @@ void OpenClDeviceQueue::build_moment_table(const detail::DeviceData& depth, deta
 {
     translate_cl_errors([&] {
         auto& t = static_cast<ClTableData&>(table);
-        const SatParams p = device_table_params(depth.dims, t.dims(), t.limbs);
+        SatParams p = device_table_params(depth.dims, t.dims(), t.limbs);
+        p.convention = t.conversion;
         const Output<int> flags = flags_for(depth.dims.height);
         const std::size_t origin_bytes = t.layout.storage_elements * 4 - t.layout.origin_offset_bytes;
         backend_.enqueue_table_build(input_of<float>(static_cast<const ClImageData&>(depth)), t.origin, origin_bytes,

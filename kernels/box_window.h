@@ -48,30 +48,57 @@ PN_FN TexelWindow texel_window(pn_dims t, pn_float u, pn_float v, int radius)
     return texel_window_xy(t, u, v, radius, radius);
 }
 
+/* The lowest and highest v of receiver rows [y0, y1), clamped into [0, 1]
+ * as the lookups' receivers are (load_checked_receiver), lane by lane into
+ * `low` and `high` at (0, 0) of dims `strip` (one strip: the caller takes
+ * the lanes' extremes). The map rows a band of direct sums reads follow from
+ * them (texel_window_xy's rows; simd/cpu_direct_sums.cpp). The row is read
+ * clamped to its width, so that no lane past it reads as v = 0. */
+PN_FN void receiver_v_bounds(PN_GLOBAL const float* receivers, pn_dims d, int y0, int y1, PN_GLOBAL float* low,
+                             PN_GLOBAL float* high, pn_dims strip)
+{
+    pn_float lowest = 1.0f, highest = 0.0f;
+    for (int y = y0; y < y1; ++y)
+        PN_FOR_STRIPS(x, 0, d.width)
+        {
+            const pn_float v = pn_clamp(pn_load_clamped(PN_PLANE(receivers, d, 1), d, x, y), 0.0f, 1.0f);
+            lowest = pn_min(lowest, v);
+            highest = pn_max(highest, v);
+        }
+    pn_store(low, strip, 0, 0, lowest);
+    pn_store(high, strip, 0, 0, highest);
+}
+
 /* The opening of the box-window lookups (vsm, msm, evsm): PN_LOOKUP_BEGIN
  * (kernels/chebyshev.h), then the receiver's window `w`. */
 #define PN_BOX_LOOKUP_BEGIN(r, w) \
     PN_LOOKUP_BEGIN(r);           \
     const TexelWindow w = texel_window(p.table, r.u, r.v, p.radius)
 
-/* The sums of the `moments` values over the window's texels. A strip whose
- * windows all lie inside the map reads its taps at uniform offsets from each
- * lane's window origin; a strip touching an edge masks the taps beyond the
- * clipped window (as kernels/pcf.h's box). */
-PN_FN void direct_box_sums(PN_GLOBAL const float* depth, pn_dims d, DepthConversion c, TexelWindow w, int radius,
-                           int encoding, float c_positive, float c_negative, int moments, pn_double* sum)
+/* The sums of the `moments` values over the window's texels, read from
+ * `map` (a DirectMap: the map's rows it holds, and their convention). A
+ * strip whose windows all lie inside the map reads its taps at uniform
+ * offsets from each lane's window origin; a strip touching an edge masks the
+ * taps beyond the clipped window (as kernels/pcf.h's box). A window's rows
+ * lie in `map` for every active lane (simd/cpu_direct_sums.cpp picks a band
+ * that holds them); the origin's row is clamped into it so that an inactive
+ * lane (the tail of a row, its window at u = v = 0) reads inside it too. */
+PN_FN void direct_box_sums(PN_GLOBAL const float* depth, DirectMap map, TexelWindow w, int radius, int encoding,
+                           float c_positive, float c_negative, int moments, pn_double* sum)
 {
     for (int k = 0; k < moments; ++k) sum[k] = 0.0;
     const int side = 2 * radius + 1;
     const pn_int width = w.x1 - w.x0, height = w.y1 - w.y0;
     const pn_float full = pn_int_to_float(width * height);
+    const pn_int row = w.y0 - map.first_row;
     pn_double v[4];
     if (pn_all(full == (float)(side * side))) {
-        const pn_int origin = w.y0 * d.pitch + w.x0;
+        const pn_int origin = pn_iclamp(row, 0, map.rows.height - side) * map.rows.pitch + w.x0;
         for (int dy = 0; dy < side; ++dy)
             for (int dx = 0; dx < side; ++dx) {
-                const pn_float stored = pn_gather(depth, origin + (dy * d.pitch + dx));
-                texel_values(depth_to_unclamped(stored, c), encoding, c_positive, c_negative, moments, v);
+                const pn_float stored = pn_gather(depth, origin + (dy * map.rows.pitch + dx));
+                texel_values(depth_to_unclamped(stored, map.convention), encoding, c_positive, c_negative, moments,
+                             v);
                 for (int k = 0; k < moments; ++k) sum[k] = sum[k] + v[k];
             }
         return;
@@ -80,26 +107,39 @@ PN_FN void direct_box_sums(PN_GLOBAL const float* depth, pn_dims d, DepthConvers
     for (int dy = 0; dy < side; ++dy)
         for (int dx = 0; dx < side; ++dx) {
             const pn_dmask inside = pn_mask_to_dmask(pn_and(columns > (float)dx, rows > (float)dy));
-            texel_values(depth_to_unclamped(pn_fetch(depth, d, w.x0 + dx, w.y0 + dy), c), encoding,
-                         c_positive, c_negative, moments, v);
+            const pn_float stored = pn_fetch(depth, map.rows, w.x0 + dx, row + dy);
+            texel_values(depth_to_unclamped(stored, map.convention), encoding, c_positive, c_negative, moments, v);
             for (int k = 0; k < moments; ++k) sum[k] = sum[k] + pn_dselect(inside, v[k], 0.0);
         }
 }
 
+/* The map a direct entry reads: `direct` as the host or the CPU's band
+ * schedule set it, or, left zeroed (Params filled by hand), the whole map
+ * of dims `table` in the receivers' convention `c`. */
+PN_FN DirectMap direct_map(DirectMap direct, pn_dims table, DepthConversion c)
+{
+    if (direct.rows.height > 0) return direct;
+    DirectMap whole;
+    whole.rows = table;
+    whole.first_row = 0;
+    whole.convention = c;
+    return whole;
+}
+
 /* The window's means of the values: the direct counterpart of a table's
- * box query (`depth`: the map, one plane of dims `d`, stored in convention
- * `c`, converted per tap without clamps: the host checked the map's range
- * up front, and texel_values clamps l; kernels/depth_convention.h. The kind
+ * box query (`depth`: the map's rows `map` holds, stored in its convention,
+ * converted per tap without clamps: the host checked the map's range up
+ * front, and texel_values clamps l; kernels/depth_convention.h. The kind
  * is not made a literal: four copies of EVSM's window made its normalised
  * path slower, docs/integration.md, "Depth conventions").
  * One reciprocal of the area, not a division per value: double divisions are
  * much of MSM's and EVSM's time; it moves a mean by at most one rounding
  * (2^-53 relative). */
-PN_FN void direct_box_means(PN_GLOBAL const float* depth, pn_dims d, DepthConversion c, TexelWindow w, int radius,
-                            int encoding, float c_positive, float c_negative, int moments, pn_double* mean)
+PN_FN void direct_box_means(PN_GLOBAL const float* depth, DirectMap map, TexelWindow w, int radius, int encoding,
+                            float c_positive, float c_negative, int moments, pn_double* mean)
 {
     pn_double sum[4];
-    direct_box_sums(depth, d, c, w, radius, encoding, c_positive, c_negative, moments, sum);
+    direct_box_sums(depth, map, w, radius, encoding, c_positive, c_negative, moments, sum);
     const pn_double inverse_area = 1.0 / pn_int_to_double((w.x1 - w.x0) * (w.y1 - w.y0));
     for (int k = 0; k < moments; ++k) mean[k] = sum[k] * inverse_area;
 }

@@ -64,6 +64,21 @@ PN_FN pn_float depth_to_unclamped(pn_float z, DepthConversion c)
     return far_side / (1.0f + c.scale * near_side);
 }
 
+/* Rows [y0, y1) of a stored map (dims d) converted by depth_to_unclamped
+ * into rows 0 .. y1 - y0 of `out` (dims o): the CPU's direct window sums
+ * convert the band of rows their windows read once, not each texel once per
+ * window (simd/cpu_direct_sums.cpp). The arithmetic of the per-tap
+ * conversion, so the same values. */
+PN_FN void depth_convert_rows(PN_GLOBAL const float* depth, pn_dims d, PN_GLOBAL float* out, pn_dims o,
+                              DepthConversion c, int y0, int y1)
+{
+    for (int y = y0; y < y1; ++y)
+        PN_FOR_STRIPS(x, 0, d.width)
+        {
+            pn_store(out, o, x, y - y0, depth_to_unclamped(pn_load(depth, d, x, y), c));
+        }
+}
+
 /* The same clamped into [0, 1], for stored values the caller checks or flags
  * (a map checked up front, a table build's flag): equal to
  * depth_to_normalized on every value in the range, one clamp fewer. */

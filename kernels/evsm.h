@@ -82,13 +82,12 @@ PN_TABLE_VARIANTS(PN_EVSM_KERNEL)
 PN_KERNEL void evsm_direct(PN_LOOKUP_ARGS_OF(float, depth, MomentParams))
 {
     PN_BOX_LOOKUP_BEGIN(r, w);
+    const DirectMap map = direct_map(p.direct, p.table, p.convention);
     pn_double mean[4];
     if (p.channels == 4)
-        direct_box_means(depth, p.table, p.convention, w, p.radius, PN_TABLE_EVSM, p.exponent_positive,
-                         p.exponent_negative, 4, mean);
+        direct_box_means(depth, map, w, p.radius, PN_TABLE_EVSM, p.exponent_positive, p.exponent_negative, 4, mean);
     else
-        direct_box_means(depth, p.table, p.convention, w, p.radius, PN_TABLE_EVSM, p.exponent_positive,
-                         p.exponent_negative, 2, mean);
+        direct_box_means(depth, map, w, p.radius, PN_TABLE_EVSM, p.exponent_positive, p.exponent_negative, 2, mean);
     PN_LOOKUP_STORE(evsm_visibility(mean, r.z, p));
 }
 

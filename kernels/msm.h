@@ -370,7 +370,8 @@ PN_KERNEL void msm_direct(PN_LOOKUP_ARGS_OF(float, depth, MomentParams))
 {
     PN_BOX_LOOKUP_BEGIN(r, w);
     pn_double mean[4];
-    direct_box_means(depth, p.table, p.convention, w, p.radius, PN_TABLE_POWERS, 0.0f, 0.0f, 4, mean);
+    const DirectMap map = direct_map(p.direct, p.table, p.convention);
+    direct_box_means(depth, map, w, p.radius, PN_TABLE_POWERS, 0.0f, 0.0f, 4, mean);
     PN_LOOKUP_STORE(msm_visibility(msm_moments_from_means(mean, PN_MOMENTS_POWER), r.z, msm_exact_precision(p), p));
 }
 

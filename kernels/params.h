@@ -36,6 +36,19 @@ typedef struct {
     float scale; /* linear: 1 / (far - near); perspective, reversed: k = (far - near) / near; else 0 */
 } DepthConversion;
 
+/* The shadow map as the direct window sums read it (kernels/box_window.h):
+ * `rows` holds the map's rows [first_row, first_row + rows.height), stored in
+ * `convention`. The host passes the whole map (first_row 0, the map's
+ * convention); the CPU schedule may pass a band of rows it converted to
+ * normalised depth once (simd/cpu_direct_sums.cpp). Zeroed (the table
+ * lookups sharing the Params, Params filled by hand): the whole map of dims
+ * `table` in the receivers' convention (direct_map). */
+typedef struct {
+    pn_dims rows;
+    int first_row;
+    DepthConversion convention;
+} DirectMap;
+
 /* Summed-area table of depth moments (kernels/moment_table.h).
  * The table stores inclusive sums S(x, y) = sum of m(i, j) for i <= x, j <= y;
  * row y lives at table + (y + 1) * pitch, so that row -1 (table + 0) is a zero
@@ -68,7 +81,8 @@ typedef struct {
     float bleed;            /* light-bleeding reduction in [0, 1) */
     float light_size;       /* vssm: texture units, the search width and L in w = L (z - z_b) / z_b */
     int limbs;              /* exact tables: 16-bit limbs per value (SatParams) */
-    DepthConversion convention; /* the receivers' z (and, direct sums, the map's) */
+    DepthConversion convention; /* the receivers' z (and the map's: its table, or `direct`) */
+    DirectMap direct;       /* vsm_direct: the map's rows it reads */
 } ChebyshevParams;
 
 /* Cross-bilateral filter of a mask guided by depth (kernels/bilateral.h). The
@@ -165,7 +179,8 @@ typedef struct {
     float bleed;             /* evsm: light-bleeding reduction in [0, 1) */
     float exponent_positive; /* evsm: c+ */
     float exponent_negative; /* evsm: c- */
-    DepthConversion convention; /* the receivers' z (and, direct sums, the map's) */
+    DepthConversion convention; /* the receivers' z (and the map's: its table, or `direct`) */
+    DirectMap direct;        /* msm_direct, evsm_direct: the map's rows they read */
 } MomentParams;
 
 /* The percentage-closer family (kernels/depth_bias.h, pcf.h, pcf_gauss.h,

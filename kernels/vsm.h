@@ -27,7 +27,8 @@ PN_KERNEL void vsm_direct(PN_LOOKUP_ARGS_OF(float, depth, ChebyshevParams))
 {
     PN_BOX_LOOKUP_BEGIN(r, w);
     pn_double mean[2];
-    direct_box_means(depth, p.table, p.convention, w, p.radius, PN_TABLE_POWERS, 0.0f, 0.0f, 2, mean);
+    const DirectMap map = direct_map(p.direct, p.table, p.convention);
+    direct_box_means(depth, map, w, p.radius, PN_TABLE_POWERS, 0.0f, 0.0f, 2, mean);
     DepthMoments m;
     m.mean = mean[0];
     m.mean_sq = mean[1];

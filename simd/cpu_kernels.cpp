@@ -123,6 +123,8 @@ static constexpr CpuKernels make_table()
     t.bilateral_full_span = &isa::bilateral_full_span;
     t.bilateral_horizontal_span = &isa::bilateral_horizontal_span;
     t.bilateral_vertical_span = &isa::bilateral_vertical_span;
+    t.depth_convert_rows = &isa::depth_convert_rows;
+    t.receiver_v_bounds = &isa::receiver_v_bounds;
     t.dialect_double_probe = &isa::dialect_double_probe;
     t.dialect_gather_pair_probe = &isa::dialect_gather_pair_probe;
     t.dialect_upair_probe = &isa::dialect_upair_probe;

@@ -68,6 +68,12 @@ struct CpuKernels {
                                       int*, BilateralParams, int x0, int x1, int y0, int y1);
     void (*bilateral_vertical_span)(const float*, const float*, const float*, const int*, const float*, float*,
                                     BilateralParams, int x0, int x1, int y0, int y1);
+    // Rows [y0, y1) of a stored map converted to normalised depth into rows
+    // 0 .. y1 - y0 of the second (kernels/depth_convention.h; simd/cpu_direct_sums.cpp).
+    void (*depth_convert_rows)(const float*, pn_dims, float*, pn_dims, DepthConversion, int y0, int y1);
+    // The lowest and highest clamped v of receiver rows [y0, y1), per lane of
+    // one strip (kernels/box_window.h; simd/cpu_direct_sums.cpp).
+    void (*receiver_v_bounds)(const float*, pn_dims, int y0, int y1, float* low, float* high, pn_dims strip);
     // The double lanes of the dialect on one strip of `lanes` values
     // (tests/kernel_table_test.cpp, DialectDouble): for lane i,
     // d[i] = to_double(f), d[L + i] = uint_to_double(u), d[2L + i] =

@@ -4,10 +4,14 @@
 // the run-time KernelId made compile-time by the table's one switch
 // (detail::visit_lookup), the source's buffers (one, or several arrays) in
 // the entry's order (detail::source_buffers). No method is named here: a new
-// lookup-shaped entry runs with no edit of this file.
+// lookup-shaped entry runs with no edit of this file. The direct window sums
+// over a map in another convention than normalised depth take their own
+// schedule (simd/cpu_direct_sums.h), chosen by their Params' DirectMap.
 #include <tuple>
+#include <type_traits>
 
 #include "simd/cpu_backend.h"
+#include "simd/cpu_direct_sums.h"
 #include "simd/cpu_schedule.h"
 
 namespace penumbra::cpu {
@@ -19,6 +23,10 @@ void CpuBackend::receiver_lookup(KernelId kernel, const detail::LookupSource& so
         constexpr KernelId K = decltype(k)::value;
         std::apply(
             [&](const auto*... sources) {
+                if constexpr (sizeof...(sources) == 1 && (std::is_same_v<decltype(sources), const float*> && ...) &&
+                              ReadsDirectMap<std::decay_t<decltype(p)>>)
+                    if (converts_per_band(p))
+                        return launch_direct_sums<K>(kernels_, sources..., receivers, out, bad_rows, p);
                 launch_pixels<K>(kernels_, out.width(), out.height(), sources..., receivers.plane(0), out.plane(0),
                                  bad_rows, p);
             },

@@ -51,6 +51,8 @@ struct DeviceTableData {
     const BackendImpl* owner = nullptr;
     int width = 0, height = 0, moments = 2, limbs = 1;
     Precision precision = Precision::Exact;
+    DepthConvention depth{};      // the maps' convention (the lookups' check)
+    DepthConversion conversion{}; // the same as the build kernels read it (kernels/params.h)
     MomentTableLayout layout{};
     pn_dims dims() const { return {width, height, layout.pitch, int(layout.plane_pitch)}; }
 };

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "host/backend/backend.h"
+#include "host/src/depth_conversion.h"
 #include "penumbra/depth_convention.h"
 #include "penumbra/image.h"
 
@@ -40,6 +41,7 @@ void checked_direct_lookup(BackendImpl& backend, const std::string& op, const Im
 {
     check_shadow_map(map, op, convention);
     params.table = dims_of(map);
+    params.direct = DirectMap{params.table, 0, kernel_conversion(convention)};
     checked_lookup(op, receivers,
                    [&](int* bad_rows) { receiver_lookup<K>(backend, map, receivers, params, out, bad_rows); });
 }

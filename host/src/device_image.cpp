@@ -4,11 +4,13 @@
 // whose device images are host memory).
 #include "penumbra/device_image.h"
 
+#include <sstream>
 #include <string>
 #include <utility>
 
 #include "bilateral_setup.h"
 #include "chebyshev_params.h"
+#include "depth_conversion.h"
 #include "host/backend/backend.h"
 #include "host/backend/device_queue.h"
 #include "penumbra/config.h"
@@ -78,6 +80,16 @@ void check_shape(const std::string& op, const DeviceImage& image, const std::str
 
 detail::DeviceQueue* queue_of(Context& context) { return context.impl().device_queue(); }
 
+// "[0, 1]", or "[0.5, 50], the range of linear (near 0.5, far 50)", for the build's row errors.
+std::string stored_range_text(const DepthConvention& convention)
+{
+    if (convention.kind == DepthConventionKind::Normalized) return "[0, 1]";
+    const StoredDepthRange range = stored_depth_range(convention);
+    std::ostringstream text;
+    text << "[" << range.low << ", " << range.high << "], the range of " << describe(convention);
+    return text.str();
+}
+
 Event enqueued(detail::DeviceQueue* queue) { return queue ? queue->marker() : Event(); }
 
 // The Error of a row a kernel flagged, reported at finish().
@@ -108,6 +120,11 @@ detail::DeviceData& DeviceImage::data() { return *data_; }
 int DeviceMomentTable::width() const noexcept { return data_ ? data_->width : 0; }
 int DeviceMomentTable::height() const noexcept { return data_ ? data_->height : 0; }
 Precision DeviceMomentTable::precision() const noexcept { return data_ ? data_->precision : Precision::Exact; }
+const DepthConvention& DeviceMomentTable::depth_convention() const
+{
+    static const DepthConvention normalized{};
+    return data_ ? data_->depth : normalized;
+}
 const detail::DeviceTableData& DeviceMomentTable::data() const { return *data_; }
 detail::DeviceTableData& DeviceMomentTable::data() { return *data_; }
 
@@ -155,17 +172,25 @@ Image download(Context& context, const DeviceImage& image)
     return host_image(image);
 }
 
-DeviceMomentTable device_moment_table(Context& context, int width, int height, Precision precision)
+DeviceMomentTable device_moment_table(Context& context, int width, int height, Precision precision,
+                                      const DepthConvention& depth)
 {
     check_size("device_moment_table", width, height, 1);
-    if (detail::DeviceQueue* queue = queue_of(context))
-        return DeviceMomentTable(queue->allocate_table(width, height, precision));
+    check_depth_convention(depth, "device_moment_table");
+    if (detail::DeviceQueue* queue = queue_of(context)) {
+        std::shared_ptr<detail::DeviceTableData> data = queue->allocate_table(width, height, precision);
+        data->depth = depth;
+        data->conversion = detail::kernel_conversion(depth);
+        return DeviceMomentTable(std::move(data));
+    }
     auto data = std::make_shared<HostTableData>();
     data->owner = &context.impl();
     data->width = width;
     data->height = height;
     data->precision = precision;
-    data->table = MomentTable(width, height, 2, precision);
+    data->depth = depth;
+    data->conversion = detail::kernel_conversion(depth);
+    data->table = MomentTable(width, height, 2, precision, kVsmLimbs, TableValues{0, 0.0f, 0.0f, depth});
     data->limbs = data->table.limbs();
     data->layout = moment_table_layout(width, height, data->table.planes());
     return DeviceMomentTable(std::move(data));
@@ -182,9 +207,10 @@ Event build_moment_table(Context& context, const DeviceImage& depth, DeviceMomen
         build_moment_table(context, host_image(depth), host_table(table));
         return {};
     }
+    const std::string range = stored_range_text(table.depth_convention());
     queue->build_moment_table(depth.data(), table.data(),
-                              row_error(op, "depth", "the depth map holds a NaN, an infinite value or a depth outside "
-                                                     "[0, 1]"));
+                              row_error(op, "depth", "the depth map holds a NaN, an infinite value or a depth outside " +
+                                                         range));
     return enqueued(queue);
 }
 
@@ -217,25 +243,17 @@ Event chebyshev_lookup(Context& context, const std::string& op, const DeviceMome
     return enqueued(queue);
 }
 
-// The device chain's tables and lookups read normalised depth only
-// (docs/integration.md, "Depth conventions": not carried to the device path).
-void require_normalized(const std::string& op, const DepthConvention& convention)
-{
-    require(convention.kind == DepthConventionKind::Normalized, op, "depth-convention",
-            "the device-resident chain reads normalized depth only, not " + describe(convention) +
-                "; shade through the Image or view forms, which convert in the kernels' load");
-}
-
 }  // namespace
 
 Event vsm(Context& context, const DeviceMomentTable& table, const DeviceImage& receivers, const VsmOptions& options,
           DeviceImage& out)
 {
-    require_normalized("vsm", options.depth_convention);
     return chebyshev_lookup<detail::KernelId::vsm_float, detail::KernelId::vsm_exact>(
         context, "vsm", table, receivers, out,
         [&](const detail::DeviceTableData& t, pn_dims rx, pn_dims o) {
-            return detail::vsm_table_params("vsm", t.dims(), t.precision, t.limbs, rx, o, options);
+            ChebyshevParams p = detail::vsm_table_params("vsm", t.dims(), t.precision, t.limbs, rx, o, options);
+            p.convention = detail::receivers_conversion("vsm", t.depth, options.depth_convention);
+            return p;
         },
         [&](const MomentTable& t, const Image& rx, Image& o) { vsm(context, t, rx, options, o); });
 }
@@ -243,11 +261,12 @@ Event vsm(Context& context, const DeviceMomentTable& table, const DeviceImage& r
 Event vssm(Context& context, const DeviceMomentTable& table, const DeviceImage& receivers, const VssmOptions& options,
            DeviceImage& out)
 {
-    require_normalized("vssm", options.depth_convention);
     return chebyshev_lookup<detail::KernelId::vssm_float, detail::KernelId::vssm_exact>(
         context, "vssm", table, receivers, out,
         [&](const detail::DeviceTableData& t, pn_dims rx, pn_dims o) {
-            return detail::vssm_table_params("vssm", t.dims(), t.precision, t.limbs, rx, o, options);
+            ChebyshevParams p = detail::vssm_table_params("vssm", t.dims(), t.precision, t.limbs, rx, o, options);
+            p.convention = detail::receivers_conversion("vssm", t.depth, options.depth_convention);
+            return p;
         },
         [&](const MomentTable& t, const Image& rx, Image& o) { vssm(context, t, rx, options, o); });
 }

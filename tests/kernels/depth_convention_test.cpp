@@ -298,25 +298,86 @@ TEST(DepthConventionErrors, ATableLookupTakesReceiversInTheTablesConvention)
     EXPECT_NO_THROW(vsm(ctx, table, rx, same));
 }
 
-// The device-resident chain reads normalised depth only, and says so
-// (docs/integration.md, "Depth conventions").
-PN_BACKEND_TEST(DepthConventions, TheDeviceChainRefusesAnotherConvention)
+// Equal floats, pixel by pixel.
+void expect_same_bits(const Image& got, const Image& want, const std::string& what)
+{
+    ASSERT_EQ(got.width(), want.width()) << what;
+    ASSERT_EQ(got.height(), want.height()) << what;
+    for (int y = 0; y < got.height(); ++y)
+        for (int x = 0; x < got.width(); ++x)
+            ASSERT_EQ(got.at(0, x, y), want.at(0, x, y)) << what << " at " << x << ", " << y;
+}
+
+// The device-resident chain in each convention: a table made for the map's
+// convention converts in the build's load and its lookups read the
+// receivers' z in it, as the Image forms do; the downloads equal those forms
+// on the same backend bit for bit (VSM and VSSM, exact and float tables,
+// maps of 1x1, 7x3 and 33x9 and receivers two texels wider).
+PN_BACKEND_TEST(DepthConventions, TheDeviceChainShadesEachConventionAsTheHostPath)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    const DeviceImage map = upload(ctx, testing::random_depth(5, 4, 1));
-    const DeviceImage rx = upload(ctx, testing::receivers_on_texels(5, 4, 5, 4, 0.1f, 0.9f, 2));
-    DeviceMomentTable table = device_moment_table(ctx, 5, 4);
-    build_moment_table(ctx, map, table);
+    for (DepthConventionKind kind : kAllConventions)
+        for (const auto [w, h] : {std::pair{1, 1}, {7, 3}, {33, 9}})
+            for (const Precision precision : {Precision::Exact, Precision::Float}) {
+                const std::string what = to_string(kind) + " " + std::to_string(w) + "x" + std::to_string(h) + " " +
+                                         to_string(precision);
+                const DepthConvention c = convention_of(kind);
+                const Image map = testing::in_convention(testing::random_depth(w, h, 21), 0, c);
+                const Image rx = testing::in_convention(
+                    testing::scattered_receivers(w + 2, h, 0.0f, 1.0f, 0.05f, 0.95f, 22), 2, c);
+                DeviceMomentTable table = device_moment_table(ctx, w, h, precision, c);
+                EXPECT_TRUE(same_convention(table.depth_convention(), c)) << what;
+                build_moment_table(ctx, upload(ctx, map), table);
+                const DeviceImage receivers = upload(ctx, rx);
+                DeviceImage hard = device_image(ctx, w + 2, h, 1), soft = device_image(ctx, w + 2, h, 1);
+                VsmOptions vsm_options;
+                vsm_options.radius = 1;
+                vsm_options.depth_convention = c;
+                VssmOptions vssm_options;
+                vssm_options.light_size = 0.2f;
+                vssm_options.depth_convention = c;
+                vsm(ctx, table, receivers, vsm_options, hard);
+                vssm(ctx, table, receivers, vssm_options, soft);
+                const MomentTable host = build_moment_table(ctx, map, 2, precision, c);
+                expect_same_bits(download(ctx, hard), vsm(ctx, host, rx, vsm_options), what + " vsm");
+                expect_same_bits(download(ctx, soft), vssm(ctx, host, rx, vssm_options), what + " vssm");
+            }
+}
+
+// The chain's checks in a convention: a lookup naming another convention
+// than the table's is refused at the call; a map value outside the
+// convention's range is the build's InvalidData naming `depth` (at the call
+// on the CPU backends, at finish() on OpenCL), its message the range.
+PN_BACKEND_TEST(DepthConventions, TheDeviceChainChecksTheConvention)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    const DepthConvention linear = convention_of(DepthConventionKind::Linear);
+    Image map = testing::in_convention(testing::random_depth(5, 4, 1), 0, linear);
+    const Image receivers = testing::receivers_on_texels(5, 4, 5, 4, 0.1f, 0.9f, 2);
+    const DeviceImage rx = upload(ctx, testing::in_convention(receivers, 2, linear));
+    DeviceMomentTable table = device_moment_table(ctx, 5, 4, Precision::Exact, linear);
+    build_moment_table(ctx, upload(ctx, map), table);
     DeviceImage out = device_image(ctx, 5, 4, 1);
     VsmOptions vsm_options;
     vsm_options.depth_convention = convention_of(DepthConventionKind::Perspective);
     expect_error([&] { vsm(ctx, table, rx, vsm_options, out); }, ErrorCategory::InvalidArgument, "depth-convention",
-                 "normalized depth only");
-    VssmOptions vssm_options;
-    vssm_options.depth_convention = convention_of(DepthConventionKind::Linear);
-    expect_error([&] { vssm(ctx, table, rx, vssm_options, out); }, ErrorCategory::InvalidArgument,
-                 "depth-convention", "normalized depth only");
+                 "");
+    VssmOptions vssm_options;  // normalized, the table linear
+    expect_error([&] { vssm(ctx, table, rx, vssm_options, out); }, ErrorCategory::InvalidArgument, "depth-convention",
+                 "");
     finish(ctx);
+    map.at(0, 2, 3) = 0.25f;  // below near (0.5)
+    const DeviceImage bad = upload(ctx, map);
+    expect_error(
+        [&] {
+            build_moment_table(ctx, bad, table);
+            finish(ctx);
+        },
+        ErrorCategory::InvalidData, "depth", "linear");
+    DepthConvention no_far = linear;
+    no_far.far = std::nanf("");
+    expect_error([&] { device_moment_table(ctx, 5, 4, Precision::Exact, no_far); }, ErrorCategory::InvalidArgument,
+                 "far", "");
 }
 
 }  // namespace

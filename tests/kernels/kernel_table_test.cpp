@@ -79,7 +79,9 @@ TEST(KernelTable, EveryEntryAndHelperIsSetInEveryCpuTable)
         for (const void* helper :
              {(const void*)table.sat_block_float, (const void*)table.sat_block_exact,
               (const void*)table.bilateral_full_span, (const void*)table.bilateral_horizontal_span,
-              (const void*)table.bilateral_vertical_span, (const void*)table.dialect_double_probe,
+              (const void*)table.bilateral_vertical_span, (const void*)table.depth_convert_rows,
+              (const void*)table.receiver_v_bounds,
+              (const void*)table.dialect_double_probe,
               (const void*)table.dialect_gather_pair_probe, (const void*)table.dialect_index_probe})
             EXPECT_NE(helper, nullptr) << isa;
     }

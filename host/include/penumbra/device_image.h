@@ -25,6 +25,7 @@
 #include "penumbra/bilateral.h"
 #include "penumbra/chebyshev.h"
 #include "penumbra/context.h"
+#include "penumbra/depth_convention.h"
 #include "penumbra/image.h"
 #include "penumbra/moment_table.h"
 
@@ -72,6 +73,7 @@ private:
 };
 
 // A moment table of VSM's shape (2 moments: VSM and VSSM read it) on the device.
+// It records the convention of the maps it is built from (device_moment_table).
 class DeviceMomentTable {
 public:
     DeviceMomentTable() = default;
@@ -79,6 +81,8 @@ public:
     int width() const noexcept;
     int height() const noexcept;
     Precision precision() const noexcept;
+    // The convention of the depth maps it is built from.
+    const DepthConvention& depth_convention() const;
     bool empty() const noexcept { return !data_; }
     const detail::DeviceTableData& data() const;
     detail::DeviceTableData& data();
@@ -100,8 +104,13 @@ DeviceImage wrap_opencl_buffer(Context& context, _cl_mem* buffer, int width, int
 // Waits (finish()), then one download into a new Image.
 Image download(Context& context, const DeviceImage& image);
 
+// A table for maps stored in `depth` (penumbra/depth_convention.h):
+// build_moment_table converts them in the kernels' load, as the Image form
+// does, and vsm / vssm read their receivers' z in it (their options must name
+// the same convention). Error(InvalidArgument) naming near or far for a bad
+// convention.
 DeviceMomentTable device_moment_table(Context& context, int width, int height,
-                                      Precision precision = Precision::Exact);
+                                      Precision precision = Precision::Exact, const DepthConvention& depth = {});
 
 // The operations, enqueued. Their checks of sizes and options throw at once,
 // as the Image forms'; the kernels' findings in the data come from finish().
