@@ -110,7 +110,7 @@ void run(benchmark::State& state, const std::string& backend, const std::string&
 }
 
 [[maybe_unused]] const bool registered = [] {
-    for (const std::string backend : {std::string("opencl"), best_cpu_backend()})
+    for (const std::string& backend : {std::string("opencl"), best_cpu_backend()})
         for (const char* residency : {"host", "device", "resident"}) {
             const std::string name = "device_chain/backend:" + backend + "/residency:" + residency +
                                      "/map:1024/width:1920/height:1080";

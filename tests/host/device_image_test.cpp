@@ -117,7 +117,7 @@ PN_BACKEND_TEST(DeviceChain, EqualsTheHostPathAtOddSizes)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     Context& oracle = PN_CONTEXT_OR_SKIP("scalar");
-    for (const auto [w, h] : {std::pair{1, 1}, {7, 3}, {17, 5}, {33, 9}})
+    for (const auto& [w, h] : {std::pair{1, 1}, {7, 3}, {17, 5}, {33, 9}})
         for (const Precision precision : {Precision::Exact, Precision::Float})
             for (const bool separable : {false, true})
                 for (const bool soft : {false, true}) {

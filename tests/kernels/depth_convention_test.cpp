@@ -317,7 +317,7 @@ PN_BACKEND_TEST(DepthConventions, TheDeviceChainShadesEachConventionAsTheHostPat
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     for (DepthConventionKind kind : kAllConventions)
-        for (const auto [w, h] : {std::pair{1, 1}, {7, 3}, {33, 9}})
+        for (const auto& [w, h] : {std::pair{1, 1}, {7, 3}, {33, 9}})
             for (const Precision precision : {Precision::Exact, Precision::Float}) {
                 const std::string what = to_string(kind) + " " + std::to_string(w) + "x" + std::to_string(h) + " " +
                                          to_string(precision);
