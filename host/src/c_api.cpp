@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <initializer_list>
 #include <new>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "penumbra/bilateral.h"
 #include "penumbra/context.h"
+#include "penumbra/depth_convention.h"
 #include "penumbra/device_image.h"
 #include "penumbra/error.h"
 #include "penumbra/image_view.h"
@@ -181,6 +183,57 @@ penumbra::BilateralOptions blur_options(const penumbra_blur_options& o)
     return b;
 }
 
+// Normalised depth reads no planes; the other conventions read both.
+bool reads_planes(penumbra::DepthConventionKind kind) { return kind != penumbra::DepthConventionKind::Normalized; }
+
+// A plane given to normalised depth, which reads none.
+void require_unset_plane(float value, const char* function, const char* plane)
+{
+    if (value == 0.0f) return;
+    std::ostringstream text;
+    text << "normalized depth reads no " << plane << " plane (" << plane << "_plane is " << value
+         << "): leave it 0, or name the convention that reads it (PENUMBRA_DEPTH_LINEAR, _PERSPECTIVE, _REVERSED)";
+    throw Error(ErrorCategory::InvalidArgument, function, plane, text.str());
+}
+
+penumbra::DepthConventionKind depth_kind_of(penumbra_depth_kind kind, const char* function)
+{
+    using penumbra::DepthConventionKind;
+    switch (kind) {
+    case PENUMBRA_DEPTH_NORMALIZED: return DepthConventionKind::Normalized;
+    case PENUMBRA_DEPTH_LINEAR: return DepthConventionKind::Linear;
+    case PENUMBRA_DEPTH_PERSPECTIVE: return DepthConventionKind::Perspective;
+    case PENUMBRA_DEPTH_REVERSED: return DepthConventionKind::Reversed;
+    case PENUMBRA_DEPTH_KIND_MAX_ENUM: break;  // the range marker (penumbra.h), not a convention
+    }
+    throw Error(ErrorCategory::InvalidArgument, function, "depth-convention",
+                "the depth convention " + std::to_string(int(kind)) +
+                    " is none of PENUMBRA_DEPTH_NORMALIZED, _LINEAR, _PERSPECTIVE, _REVERSED");
+}
+
+// The C struct (NULL: normalised) as the C++ one. What only a C struct can
+// get wrong is refused here: planes on normalised depth (ignored there, so a
+// likely mistake, as the method options refuse them) and a convention that
+// reads planes left zeroed; check_depth_convention does the rest.
+penumbra::DepthConvention depth_convention_of(const penumbra_depth_convention* c, const char* function)
+{
+    if (!c) return {};
+    penumbra::DepthConvention d;
+    d.kind = depth_kind_of(c->kind, function);
+    const std::string kind = penumbra::to_string(d.kind);
+    if (!reads_planes(d.kind)) {
+        require_unset_plane(c->near_plane, function, "near");
+        require_unset_plane(c->far_plane, function, "far");
+        return d;
+    }
+    penumbra::require(c->near_plane != 0.0f || c->far_plane != 0.0f, function, "near",
+                      kind + " depth needs the light's near and far planes (near_plane and far_plane are both 0)");
+    d.near = c->near_plane;
+    d.far = c->far_plane;
+    penumbra::check_depth_convention(d, function);
+    return d;
+}
+
 }  // namespace
 
 extern "C" {
@@ -338,10 +391,12 @@ penumbra_status penumbra_device_image_download(penumbra_context* context, const 
 }
 
 penumbra_status penumbra_device_table_create(penumbra_context* context, int width, int height,
-                                             penumbra_device_table** table)
+                                             const penumbra_depth_convention* depth, penumbra_device_table** table)
 {
-    return create_handle(table, "penumbra_device_table_create", "table", context, [&](penumbra::Context& ctx) {
-        return penumbra::device_moment_table(ctx, width, height);
+    constexpr const char* kFunction = "penumbra_device_table_create";
+    return create_handle(table, kFunction, "table", context, [&](penumbra::Context& ctx) {
+        return penumbra::device_moment_table(ctx, width, height, penumbra::Precision::Exact,
+                                             depth_convention_of(depth, kFunction));
     });
 }
 
@@ -371,12 +426,13 @@ penumbra_status penumbra_enqueue_shade(penumbra_context* context, const penumbra
         penumbra::require(name == "vsm" || name == "vssm", kFunction, "method",
                           "'" + name + "' does not run on device images yet; vsm and vssm do");
         const penumbra::MethodSettings& m = method->settings;
+        // The method's convention is the receivers'; the C++ call refuses one that is not the table's.
         if (name == "vssm")
-            penumbra::vssm(context->context, table->table, receivers->image, {m.light_size, m.min_variance, m.bleed},
-                           out->image);
+            penumbra::vssm(context->context, table->table, receivers->image,
+                           {m.light_size, m.min_variance, m.bleed, m.depth_convention}, out->image);
         else
-            penumbra::vsm(context->context, table->table, receivers->image, {m.radius, m.min_variance, m.bleed},
-                          out->image);
+            penumbra::vsm(context->context, table->table, receivers->image,
+                          {m.radius, m.min_variance, m.bleed, m.depth_convention}, out->image);
     });
 }
 

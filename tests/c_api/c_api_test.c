@@ -176,7 +176,7 @@ static void device_chain_matches_views(const char* backend_name, penumbra_contex
     CHECK(penumbra_device_image_upload(context, &g, &gd) == PENUMBRA_OK, "%s", penumbra_last_error());
     CHECK(penumbra_device_image_create(context, W, H, 1, &vis) == PENUMBRA_OK, "%s", penumbra_last_error());
     CHECK(penumbra_device_image_create(context, W, H, 1, &soft) == PENUMBRA_OK, "%s", penumbra_last_error());
-    CHECK(penumbra_device_table_create(context, MAP_W, MAP_H, &table) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_table_create(context, MAP_W, MAP_H, NULL, &table) == PENUMBRA_OK, "%s", penumbra_last_error());
     CHECK(penumbra_enqueue_moment_table(context, depth, table) == PENUMBRA_OK, "%s", penumbra_last_error());
     CHECK(penumbra_enqueue_shade(context, vsm, table, rx, vis) == PENUMBRA_OK, "%s", penumbra_last_error());
     CHECK(penumbra_enqueue_blur(context, vis, gd, NULL, NULL, soft) == PENUMBRA_OK, "%s", penumbra_last_error());
@@ -207,6 +207,212 @@ static void device_chain_matches_views(const char* backend_name, penumbra_contex
     penumbra_device_image_destroy(soft);
     penumbra_device_table_destroy(table);
     penumbra_method_destroy(vsm);
+}
+
+/* The depth conventions' float64 reference, from their definitions (as
+ * tests/support/depth_conventions.h): normalised l is the distance d = near +
+ * l (far - near); linear stores d, perspective z = far (d - near) / (d (far -
+ * near)), reversed 1 - z. Back: d = near far / (far - z (far - near)), then l. */
+static double stored_from_normalized(double l, penumbra_depth_convention c)
+{
+    const double n = c.near_plane, f = c.far_plane, d = n + l * (f - n);
+    const double projected = f * (d - n) / (d * (f - n));
+    switch (c.kind) {
+    case PENUMBRA_DEPTH_LINEAR: return d;
+    case PENUMBRA_DEPTH_PERSPECTIVE: return projected;
+    case PENUMBRA_DEPTH_REVERSED: return 1.0 - projected;
+    default: return l;
+    }
+}
+
+static double normalized_from_projected(double z, penumbra_depth_convention c)
+{
+    const double n = c.near_plane, f = c.far_plane;
+    return (n * f / (f - z * (f - n)) - n) / (f - n);
+}
+
+static double normalized_from_stored(double s, penumbra_depth_convention c)
+{
+    switch (c.kind) {
+    case PENUMBRA_DEPTH_LINEAR: return (s - c.near_plane) / ((double)c.far_plane - c.near_plane);
+    case PENUMBRA_DEPTH_PERSPECTIVE: return normalized_from_projected(s, c);
+    case PENUMBRA_DEPTH_REVERSED: return normalized_from_projected(1.0 - s, c);
+    default: return s;
+    }
+}
+
+/* `n` values written in convention c (in double, stored float32) into
+ * `stored`, and what that float32 storage holds, back in normalised depth,
+ * into `held`. */
+static void in_convention(const float* values, int n, penumbra_depth_convention c, float* stored, float* held)
+{
+    for (int i = 0; i < n; ++i) {
+        stored[i] = (float)stored_from_normalized(values[i], c);
+        held[i] = (float)normalized_from_stored(stored[i], c);
+    }
+}
+
+static penumbra_method* method_in(const char* name, const char* convention_name)
+{
+    const char* names[] = {"radius", "depth-convention", "near", "far"};
+    const char* values[] = {"2", convention_name, "0.5", "50"};
+    const int vsm = strcmp(name, "vsm") == 0; /* vssm reads no radius */
+    const size_t count = convention_name ? 4 : 1;
+    penumbra_method* method = NULL;
+    CHECK(penumbra_method_create(name, names + !vsm, values + !vsm, count - !vsm, &method) == PENUMBRA_OK,
+          "%s in %s: %s", name, convention_name ? convention_name : "normalized", penumbra_last_error());
+    return method;
+}
+
+static double max_difference(const float* a, const float* b, int n)
+{
+    double largest = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double d = fabs((double)a[i] - b[i]);
+        if (d > largest || isnan(d)) largest = d; /* a NaN is the largest */
+    }
+    return largest;
+}
+
+/* Device chain (upload, table in c, lookup, finish, download) of `method` on
+ * a map and receivers stored in c, into `got`. */
+static void device_chain_in(penumbra_context* context, const penumbra_depth_convention* c,
+                            const penumbra_method* method, const float* stored_map, const float* stored_rx, float* got)
+{
+    const penumbra_image_view m = {stored_map, MAP_W, MAP_H, 1, 0, 0, PENUMBRA_PLANAR, PENUMBRA_FLOAT32};
+    const penumbra_image_view r = {stored_rx, W, H, 3, 0, 0, PENUMBRA_PLANAR, PENUMBRA_FLOAT32};
+    const penumbra_output_view out = output_view(got, 1);
+    penumbra_device_image *depth = NULL, *rx = NULL, *vis = NULL;
+    penumbra_device_table* table = NULL;
+    CHECK(penumbra_device_image_upload(context, &m, &depth) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_image_upload(context, &r, &rx) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_image_create(context, W, H, 1, &vis) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_table_create(context, MAP_W, MAP_H, c, &table) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_enqueue_moment_table(context, depth, table) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_enqueue_shade(context, method, table, rx, vis) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_image_download(context, vis, &out) == PENUMBRA_OK, "%s", penumbra_last_error());
+    penumbra_device_image_destroy(depth);
+    penumbra_device_image_destroy(rx);
+    penumbra_device_image_destroy(vis);
+    penumbra_device_table_destroy(table);
+}
+
+/* penumbra_shade of `method` on planar packed map and receivers, into `out`. */
+static void shade_planar(penumbra_context* context, const penumbra_method* method, const float* map_values,
+                         const float* rx_values, float* out)
+{
+    const penumbra_image_view m = {map_values, MAP_W, MAP_H, 1, 0, 0, PENUMBRA_PLANAR, PENUMBRA_FLOAT32};
+    const penumbra_image_view r = {rx_values, W, H, 3, 0, 0, PENUMBRA_PLANAR, PENUMBRA_FLOAT32};
+    const penumbra_output_view o = output_view(out, 1);
+    CHECK(penumbra_shade(context, method, &m, &r, &o) == PENUMBRA_OK, "%s", penumbra_last_error());
+}
+
+/* A map and receivers written in each convention (near 0.5, far 50, as the
+ * C++ tests') through the device chain, its table made in the convention and
+ * its method naming it: vsm (radius 2, a table lookup) and vssm equal, within
+ * 1e-4 (the C++ DepthConventions.EachMethodShadesItsStoredMapAsTheNormalisedOne
+ * tolerance: the kernels' float conversion against the float64 one, times a
+ * Chebyshev bound's slope), penumbra_shade in normalised depth on the
+ * normalised map the convention's float32 storage holds; and bit for bit
+ * penumbra_shade on the stored inputs in the convention (one conversion, the
+ * same kernels). Normalised runs once with a zeroed struct: the NULL table's. */
+static void device_chain_in_each_convention(const char* backend_name, penumbra_context* context)
+{
+    static const struct {
+        penumbra_depth_kind kind;
+        const char* name;
+    } kConventions[] = {{PENUMBRA_DEPTH_NORMALIZED, NULL},
+                        {PENUMBRA_DEPTH_LINEAR, "linear"},
+                        {PENUMBRA_DEPTH_PERSPECTIVE, "perspective"},
+                        {PENUMBRA_DEPTH_REVERSED, "reversed"}};
+    static const char* const kMethodNames[] = {"vsm", "vssm"};
+    static float stored_map[MAP_W * MAP_H], held_map[MAP_W * MAP_H], stored_rx[3 * W * H], held_rx[3 * W * H];
+    for (size_t k = 0; k < sizeof kConventions / sizeof kConventions[0]; ++k) {
+        const int normalized = kConventions[k].kind == PENUMBRA_DEPTH_NORMALIZED;
+        const penumbra_depth_convention c = {kConventions[k].kind, normalized ? 0.0f : 0.5f,
+                                             normalized ? 0.0f : 50.0f};
+        const char* label = normalized ? "normalized" : kConventions[k].name;
+        in_convention(map, MAP_W * MAP_H, c, stored_map, held_map);
+        memcpy(stored_rx, receivers_planar, sizeof stored_rx);
+        memcpy(held_rx, receivers_planar, sizeof held_rx);
+        in_convention(receivers_planar + 2 * W * H, W * H, c, stored_rx + 2 * W * H, held_rx + 2 * W * H);
+        for (size_t i = 0; i < 2; ++i) {
+            penumbra_method* in_c = method_in(kMethodNames[i], kConventions[k].name);
+            penumbra_method* plain = method_in(kMethodNames[i], NULL);
+            float got[W * H], held[W * H], host[W * H];
+            device_chain_in(context, &c, in_c, stored_map, stored_rx, got);
+            shade_planar(context, plain, held_map, held_rx, held);
+            shade_planar(context, in_c, stored_map, stored_rx, host);
+            const double d = max_difference(got, held, W * H);
+            CHECK(d <= 1e-4, "%s device chain in %s on %s: %.3g from the normalised map's shade", kMethodNames[i],
+                  label, backend_name, d);
+            CHECK(same_floats(got, host, W * H), "%s device chain in %s on %s: differs from penumbra_shade in it",
+                  kMethodNames[i], label, backend_name);
+            penumbra_method_destroy(in_c);
+            penumbra_method_destroy(plain);
+        }
+    }
+}
+
+/* Bad conventions for a device table: each is PENUMBRA_INVALID_ARGUMENT
+ * naming its field, the handle left NULL; a lookup whose method names another
+ * convention than the table's is refused; a map value outside the table's
+ * convention is bad data (at the build on the CPU backends, at finish on
+ * OpenCL). */
+static void device_table_refuses_bad_conventions(penumbra_context* context)
+{
+    static const struct {
+        penumbra_depth_convention c;
+        const char* parameter;
+        const char* says;
+        const char* what;
+    } kBad[] = {
+        {{(penumbra_depth_kind)42, 0.5f, 50.0f}, "depth-convention", "42", "an unknown convention"},
+        {{PENUMBRA_DEPTH_KIND_MAX_ENUM, 0.5f, 50.0f}, "depth-convention", "2147483647", "the range marker"},
+        {{PENUMBRA_DEPTH_LINEAR, 5.0f, 5.0f}, "far", "far > near", "near = far"},
+        {{PENUMBRA_DEPTH_PERSPECTIVE, 2.0f, 1.0f}, "far", "far > near", "near > far"},
+        {{PENUMBRA_DEPTH_PERSPECTIVE, 0.0f, 10.0f}, "near", "near > 0", "a perspective near of 0"},
+        {{PENUMBRA_DEPTH_REVERSED, -1.0f, 10.0f}, "near", "near > 0", "a reversed near below 0"},
+        {{PENUMBRA_DEPTH_LINEAR, NAN, 1.0f}, "near", "finite near", "a NaN near"},
+        {{PENUMBRA_DEPTH_REVERSED, 0.1f, INFINITY}, "far", "infinite far plane", "an infinite far"},
+        {{PENUMBRA_DEPTH_LINEAR, 0.0f, 0.0f}, "near", "both 0", "linear depth without its planes"},
+        {{PENUMBRA_DEPTH_NORMALIZED, 0.5f, 0.0f}, "near", "reads no near", "a near on normalised depth"},
+        {{PENUMBRA_DEPTH_NORMALIZED, 0.0f, NAN}, "far", "reads no far", "a NaN far on normalised depth"},
+    };
+    for (size_t i = 0; i < sizeof kBad / sizeof kBad[0]; ++i) {
+        penumbra_device_table* table = NULL;
+        expect_failure(penumbra_device_table_create(context, MAP_W, MAP_H, &kBad[i].c, &table),
+                       PENUMBRA_INVALID_ARGUMENT, kBad[i].parameter, kBad[i].says, kBad[i].what);
+        CHECK(table == NULL, "%s: a failed table_create leaves the handle NULL", kBad[i].what);
+        penumbra_device_table_destroy(table);
+    }
+
+    const penumbra_depth_convention linear = {PENUMBRA_DEPTH_LINEAR, 0.5f, 50.0f};
+    penumbra_device_table* table = NULL;
+    penumbra_device_image *depth = NULL, *rx = NULL, *vis = NULL;
+    const penumbra_image_view m = map_view(); /* values in [0, 1]: below linear's near, 0.5, for most */
+    const penumbra_image_view r = {receivers_planar, W, H, 3, 0, 0, PENUMBRA_PLANAR, PENUMBRA_FLOAT32};
+    CHECK(penumbra_device_table_create(context, MAP_W, MAP_H, &linear, &table) == PENUMBRA_OK, "%s",
+          penumbra_last_error());
+    CHECK(penumbra_device_image_upload(context, &m, &depth) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_image_upload(context, &r, &rx) == PENUMBRA_OK, "%s", penumbra_last_error());
+    CHECK(penumbra_device_image_create(context, W, H, 1, &vis) == PENUMBRA_OK, "%s", penumbra_last_error());
+    penumbra_method* normalized_vsm = method_in("vsm", NULL);
+    penumbra_method* perspective_vsm = method_in("vsm", "perspective");
+    expect_failure(penumbra_enqueue_shade(context, normalized_vsm, table, rx, vis), PENUMBRA_INVALID_ARGUMENT,
+                   "depth-convention", "the table holds a map of linear depth", "a normalised lookup on a linear table");
+    expect_failure(penumbra_enqueue_shade(context, perspective_vsm, table, rx, vis), PENUMBRA_INVALID_ARGUMENT,
+                   "depth-convention", "given as perspective", "a perspective lookup on a linear table");
+    penumbra_status s = penumbra_enqueue_moment_table(context, depth, table);
+    if (s == PENUMBRA_OK) s = penumbra_finish(context);
+    expect_failure(s, PENUMBRA_INVALID_DATA, "depth", "outside [0.5, 50]", "a normalised map in a linear table");
+    CHECK(penumbra_finish(context) == PENUMBRA_OK, "the failure was reported once: %s", penumbra_last_error());
+    penumbra_method_destroy(normalized_vsm);
+    penumbra_method_destroy(perspective_vsm);
+    penumbra_device_image_destroy(depth);
+    penumbra_device_image_destroy(rx);
+    penumbra_device_image_destroy(vis);
+    penumbra_device_table_destroy(table);
 }
 
 static void expect_failure(penumbra_status got, penumbra_status status, const char* parameter, const char* says,
@@ -309,6 +515,8 @@ int main(void)
         shade_matches_cpp(kBackends[b].name, context, &kMethods[0], map16_values, depth16);
         blur_matches_cpp(kBackends[b].name, context);
         device_chain_matches_views(kBackends[b].name, context);
+        device_chain_in_each_convention(kBackends[b].name, context);
+        device_table_refuses_bad_conventions(context);
         bad_input(context);
         penumbra_context_destroy(context);
     }

@@ -165,9 +165,47 @@ void penumbra_device_image_destroy(penumbra_device_image* device); /* NULL: noth
 penumbra_status penumbra_device_image_download(penumbra_context* context, const penumbra_device_image* device,
                                                const penumbra_output_view* out);
 
-/* An exact moment table of a width x height map (VSM's: 2 moments). */
+/* How a shadow map's depths are stored (penumbra/depth_convention.h,
+ * docs/integration.md "Depth conventions"), for a device table. For a
+ * distance d from the light along its axis: normalised l = (d - near) /
+ * (far - near) in [0, 1] (the default); linear d itself, in [near, far];
+ * perspective the D3D / Vulkan depth far (d - near) / (d (far - near));
+ * reversed 1 - the perspective depth.
+ *
+ * A typed struct, not the method options' strings ("depth-convention" =
+ * "linear", "near" = "0.5", as penumbra_method_create takes them): a renderer
+ * holds near and far as floats, and printing them for the library to parse
+ * back would depend on the C locale's decimal separator (LC_NUMERIC) and on
+ * the caller's precision; the struct passes the exact floats, as
+ * penumbra_blur_options passes the blur's. The fields are near_plane and
+ * far_plane, not near and far: <windows.h> defines those two words as empty
+ * macros. A zeroed struct is normalised depth. */
+typedef enum {
+    PENUMBRA_DEPTH_NORMALIZED = 0,
+    PENUMBRA_DEPTH_LINEAR = 1,
+    PENUMBRA_DEPTH_PERSPECTIVE = 2,
+    PENUMBRA_DEPTH_REVERSED = 3,
+    PENUMBRA_DEPTH_KIND_MAX_ENUM = 0x7FFFFFFF
+} penumbra_depth_kind;
+typedef struct {
+    penumbra_depth_kind kind;
+    /* Read by linear, perspective and reversed: both finite, far_plane >
+     * near_plane, and near_plane > 0 for perspective and reversed (the
+     * projection divides by d). Normalised takes both 0: a plane given there
+     * would be ignored, so it is refused as a likely mistake. */
+    float near_plane, far_plane;
+} penumbra_depth_convention;
+
+/* An exact moment table (VSM's: 2 moments) of a width x height map stored in
+ * `depth` (NULL: normalised). penumbra_enqueue_moment_table converts the map
+ * in the kernels' load, and penumbra_enqueue_shade reads the receivers' z in
+ * the same convention: its method must name it in its options
+ * ("depth-convention", "near", "far"), or the call is refused naming
+ * "depth-convention". A bad convention is PENUMBRA_INVALID_ARGUMENT naming
+ * "depth-convention", "near" or "far"; a map value outside the convention's
+ * range is PENUMBRA_INVALID_DATA from penumbra_finish. */
 penumbra_status penumbra_device_table_create(penumbra_context* context, int width, int height,
-                                             penumbra_device_table** table);
+                                             const penumbra_depth_convention* depth, penumbra_device_table** table);
 void penumbra_device_table_destroy(penumbra_device_table* table); /* NULL: nothing */
 
 penumbra_status penumbra_enqueue_moment_table(penumbra_context* context, const penumbra_device_image* depth,
