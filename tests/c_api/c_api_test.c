@@ -2,7 +2,7 @@
  * machine has: shading through several methods with options, a 16-bit map,
  * interleaved receivers at a padded pitch and the blur give bit for bit what
  * the C++ API gives on the same input (cpp_result.cpp), and the device-resident
- * chain gives what those calls give; bad input returns
+ * chain gives what those calls give, in each depth convention too; bad input returns
  * its status code, names its parameter and leaves a message. Exit 0 when
  * every check passes. */
 #include <math.h>
