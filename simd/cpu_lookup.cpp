@@ -21,16 +21,22 @@ void CpuBackend::receiver_lookup(KernelId kernel, const detail::LookupSource& so
 {
     detail::visit_lookup(kernel, params, [&](auto k, const auto& p) {
         constexpr KernelId K = decltype(k)::value;
+        const auto sources = detail::source_buffers<K>(source);
+        // The band conversion's test sits here, in the lambda whose own
+        // parameter it depends on: inside std::apply's inner lambda the call
+        // would not depend on that lambda's parameters, and clang checks it
+        // even in a discarded branch.
+        using Sources = std::remove_cvref_t<decltype(sources)>;
+        if constexpr (ReadsDirectMap<std::decay_t<decltype(p)>> && std::tuple_size_v<Sources> == 1 &&
+                      std::is_same_v<std::tuple_element_t<0, Sources>, const float*>)
+            if (converts_per_band(p))
+                return launch_direct_sums<K>(kernels_, std::get<0>(sources), receivers, out, bad_rows, p);
         std::apply(
-            [&](const auto*... sources) {
-                if constexpr (sizeof...(sources) == 1 && (std::is_same_v<decltype(sources), const float*> && ...) &&
-                              ReadsDirectMap<std::decay_t<decltype(p)>>)
-                    if (converts_per_band(p))
-                        return launch_direct_sums<K>(kernels_, sources..., receivers, out, bad_rows, p);
-                launch_pixels<K>(kernels_, out.width(), out.height(), sources..., receivers.plane(0), out.plane(0),
+            [&](const auto*... buffers) {
+                launch_pixels<K>(kernels_, out.width(), out.height(), buffers..., receivers.plane(0), out.plane(0),
                                  bad_rows, p);
             },
-            detail::source_buffers<K>(source));
+            sources);
     });
 }
 
