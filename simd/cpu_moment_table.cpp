@@ -31,12 +31,16 @@ namespace {
 constexpr int kBlockRows = 32;
 constexpr int kBandQuantum = 64;  // block widths are multiples of every lane count
 
-// Groups of values: as many as threads, at most one per value, of equal size
-// (values / groups is 1, 2 or 4: the block functions' literal counts).
-int value_groups(int values, int threads)
+// Groups of values: as many as threads, of equal size (values / groups is 1,
+// 2 or 4: the block functions' literal counts). A group holds an EVSM warp
+// with its square, which is formed from it: split, the square's group would
+// compute the exponential again (kernels/moment_table.h, texel_values_from).
+int value_groups(const MomentTable& table, int threads)
 {
-    int groups = std::clamp(threads, 1, values);
-    while (values % groups != 0) --groups;
+    const int values = table.moments();
+    const int units = table.values().kind == PN_TABLE_EVSM ? values / 2 : values;
+    int groups = std::clamp(threads, 1, units);
+    while (units % groups != 0) --groups;
     return groups;
 }
 
@@ -92,7 +96,7 @@ void wavefront(int groups, int bands, int rows, BlockFn&& block)
 void CpuBackend::build_moment_table(const Image& depth, MomentTable& table, int* bad_rows)
 {
     const int threads = tbb::this_task_arena::max_concurrency();
-    const int groups = value_groups(table.moments(), threads);
+    const int groups = value_groups(table, threads);
     const int values = table.moments() / groups;
     const int bw = band_width(depth.width(), (threads + groups - 1) / groups);
     const int bands = (depth.width() + bw - 1) / bw;

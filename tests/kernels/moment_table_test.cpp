@@ -96,7 +96,7 @@ PN_BACKEND_TEST(MomentTableTest, ExactSumsMatchBruteForceOnEveryThreadCount)
 }
 
 // With threads to spare the CPU build gives each group of values (z and z^2,
-// or z..z^2 and z^3..z^4, or each warp) its own wavefront of blocks, cut into
+// or z..z^2 and z^3..z^4, or each EVSM warp with its square) its own wavefront of blocks, cut into
 // column bands only when threads outnumber the values
 // (simd/cpu_moment_table.cpp): every table kind and thread count must store
 // the one-thread build's bits, padding included.
