@@ -9,13 +9,16 @@
 // L1/L2. Threads split the values first: each value has planes, row carries
 // and column sums of its own, so on 2 threads a VSM table's z and z^2 are
 // two chains of full-width blocks, no hand-over between threads and no
-// column split (a 2048-column band cost 1.26x per texel even on one thread,
-// and the 2-thread build reached only 0.70-0.80 of memcpy with it: "Value
-// groups" in docs/moment_table.md); the map is read once per group. Only
-// with more threads than values are the groups cut into column bands again,
-// one per thread of the group (multiples of 64 columns), 32-row blocks:
-// fewer, longer bands mean fewer hand-offs, short blocks fill the wavefront
-// quickly (measured in docs/benchmarks.md).
+// column split (on the former Intel VM a 2048-column band cost 1.26x per
+// texel even on one thread, and the banded 2-thread build reached 0.70-0.80
+// of memcpy). The price: each group reads and converts the map itself (1.1-
+// 1.45x the work of one group on this Zen 5 VM, loaded), so on two threads
+// sharing one core it was 1.18x slower than the bands; its 2-core figure is
+// not yet measured (docs/moment_table.md, "Session 17"). Only with more
+// threads than groups are the groups cut into column bands again, one per
+// thread of the group (multiples of 64 columns), 32-row blocks: fewer,
+// longer bands mean fewer hand-offs, short blocks fill the wavefront quickly
+// (measured in docs/benchmarks.md).
 #include <tbb/parallel_for_each.h>
 #include <tbb/task_arena.h>
 
