@@ -36,11 +36,9 @@
  * Build schedule (the host's): the map is cut into blocks; a block needs the
  * row sums to its left (`carry`, per row and moment) and the column sums above
  * it (`columns`, per column and moment), and leaves both updated for its right
- * and lower neighbours. Each value has planes, carries and column sums of its
- * own, so groups of values can be built apart. The SIMD backend gives each
- * group of values its own wavefront of blocks; the OpenCL backend runs bands
- * of rows in parallel, each starting from zero columns, then adds every
- * band's column totals to the bands below.
+ * and lower neighbours. The SIMD backend runs the blocks as a wavefront; the
+ * OpenCL backend runs bands of rows in parallel, each starting from zero
+ * columns, then adds every band's column totals to the bands below.
  */
 #ifndef PENUMBRA_MOMENT_TABLE_H
 #define PENUMBRA_MOMENT_TABLE_H
@@ -56,105 +54,77 @@ PN_FN pn_mask sat_depth_outside(pn_float z)
     return pn_not(pn_and(z >= 0.0f, z <= 1.0f));
 }
 
-/* Scans rows [y0, y1) of columns [x0, x1) of the depth map into values
- * [first, first + values) of the float table (their planes, carries and
- * column sums are theirs alone: simd/cpu_moment_table.cpp builds groups of
- * values apart). x0 and x1 - x0 are multiples of every lane count (64), or x1
- * is the width. `carry` holds, per moment and row, the row's sum left of x0
- * (updated to x1); row `column_row` of `columns` holds the column sums above
- * y0 (updated to y1). A depth outside its convention's range (NaN and
- * infinities included) sets bad_rows[y]. */
+/* Scans rows [y0, y1) of columns [x0, x1) of the depth map into the float table.
+ * x0 and x1 - x0 are multiples of every lane count (64), or x1 is the width.
+ * `carry` holds, per moment and row, the row's sum left of x0 (updated to x1);
+ * row `column_row` of `columns` holds the column sums above y0 (updated to y1).
+ * A depth outside its convention's range (NaN and infinities included) sets bad_rows[y]. */
 PN_FN void sat_rows_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
                           PN_GLOBAL float* carry, PN_GLOBAL float* columns, int column_row,
-                          PN_GLOBAL int* bad_rows, const SatParams p, int first, int values, int x0, int x1, int y0,
-                          int y1)
+                          PN_GLOBAL int* bad_rows, const SatParams p, int moments, int x0, int x1, int y0, int y1)
 {
-    PN_GLOBAL float* own_table = PN_PLANE(table, p.table, first);
-    PN_GLOBAL float* own_columns = PN_PLANE(columns, p.columns, first);
-    PN_GLOBAL float* own_carry = carry + first * p.depth.height;
     for (int y = y0; y < y1; ++y) {
         pn_float row_sum[4];
-        for (int k = 0; k < values; ++k) row_sum[k] = own_carry[k * p.depth.height + y];
+        for (int k = 0; k < moments; ++k) row_sum[k] = carry[k * p.depth.height + y];
         pn_mask bad = sat_depth_outside(0.0f);
         PN_FOR_STRIPS(x, x0, x1)
         {
             const pn_float stored = pn_load(depth, p.depth, x, y);
             bad = pn_or(bad, depth_outside(stored, p.convention));
             const pn_float z = depth_checked_to_normalized(stored, p.convention);
-            pn_float m = z; /* z^(first + 1), multiplied as the whole list's ((z z) z) ... */
-            for (int i = 0; i < first; ++i) m = m * z;
-            for (int k = 0; k < values; ++k) {
-                PN_GLOBAL float* column = PN_PLANE(own_columns, p.columns, k);
+            pn_float m = z;
+            for (int k = 0; k < moments; ++k) {
+                PN_GLOBAL float* column = PN_PLANE(columns, p.columns, k);
                 const pn_float row_prefix = pn_scan_add(m) + row_sum[k];
                 const pn_float sum = pn_load(column, p.columns, x, column_row) + row_prefix;
                 pn_store(column, p.columns, x, column_row, sum);
-                pn_store_stream(PN_PLANE(own_table, p.table, k), p.table, x, y + 1, sum);
+                pn_store_stream(PN_PLANE(table, p.table, k), p.table, x, y + 1, sum);
                 row_sum[k] = pn_last(row_prefix);
                 m = m * z;
             }
         }
-        for (int k = 0; k < values; ++k) own_carry[k * p.depth.height + y] = pn_last_value(row_sum[k]);
+        for (int k = 0; k < moments; ++k) carry[k * p.depth.height + y] = pn_last_value(row_sum[k]);
         pn_flag_any(bad_rows, y, bad);
     }
 }
 
-/* Values [first, first + values): all (first 0) or a group of 1 or 2. The
- * counts as literals let the compiler unroll the per-moment loop and keep the
- * row sums in registers (measured: docs/moment_table.md). */
+/* The moment count as a literal lets the compiler unroll the per-moment loop
+ * and keep the row sums in registers (measured: docs/moment_table.md). */
 PN_FN void sat_block_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
                            PN_GLOBAL float* carry, PN_GLOBAL float* columns, int column_row,
-                           PN_GLOBAL int* bad_rows, const SatParams p, int first, int values,
-                           int x0, int x1, int y0, int y1)
+                           PN_GLOBAL int* bad_rows, const SatParams p, int x0, int x1, int y0, int y1)
 {
-    if (values == p.moments && p.moments == 2)
-        sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, 0, 2, x0, x1, y0, y1);
-    else if (values == p.moments)
-        sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, 0, 4, x0, x1, y0, y1);
-    else if (values == 1)
-        sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, first, 1, x0, x1, y0, y1);
+    if (p.moments == 2)
+        sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, 2, x0, x1, y0, y1);
     else
-        sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, first, 2, x0, x1, y0, y1);
+        sat_rows_float(depth, table, carry, columns, column_row, bad_rows, p, 4, x0, x1, y0, y1);
 }
 
-/* Values [first, first + count) of one strip (double, from the float32 depth
- * clamped into [0, 1]): z, z^2 (, z^3, z^4), or EVSM's warps
- * w+ = e^{c+ (z - 1)}, w+^2 (, |w-| = e^{-c- z}, w-^2)
- * (kernels/exponential_warp.h), into v[0 .. count). `encoding` is
+/* The values of one strip (double, from the float32 depth clamped into
+ * [0, 1]): z, z^2 (, z^3, z^4), or EVSM's warps w+ = e^{c+ (z - 1)}, w+^2
+ * (, |w-| = e^{-c- z}, w-^2) (kernels/exponential_warp.h). `encoding` is
  * PN_TABLE_POWERS or PN_TABLE_EVSM. The table build and the direct window
  * sums (kernels/box_window.h) both take their values from here, so that a
- * window summed either way sums the same doubles; a group of values (the CPU
- * build's, simd/cpu_moment_table.cpp) gets each by the same operations as
- * the whole list (z^k as ((z z) z) ..., a square as w w), hence the same bits. */
-PN_FN void texel_values_from(pn_float z, int encoding, float c_positive, float c_negative, int first, int count,
-                             pn_double* v)
-{
-    const pn_double d = pn_to_double(pn_clamp(z, 0.0f, 1.0f));
-    for (int j = 0; j < count; ++j) {
-        const int k = first + j;
-        if (encoding == PN_TABLE_EVSM) {
-            if (k % 2 == 1 && j > 0) {
-                v[j] = v[j - 1] * v[j - 1];
-                continue;
-            }
-            const pn_double w = k < 2 ? pn_dexp((double)c_positive * (d - 1.0)) : pn_dexp(-(double)c_negative * d);
-            v[j] = k % 2 == 1 ? w * w : w;
-        } else if (j > 0) {
-            v[j] = v[j - 1] * d;
-        } else {
-            v[0] = d;
-            for (int i = 0; i < first; ++i) v[0] = v[0] * d;
-        }
-    }
-}
-
+ * window summed either way sums the same doubles. */
 PN_FN void texel_values(pn_float z, int encoding, float c_positive, float c_negative, int moments, pn_double* v)
 {
-    texel_values_from(z, encoding, c_positive, c_negative, 0, moments, v);
+    const pn_double d = pn_to_double(pn_clamp(z, 0.0f, 1.0f));
+    if (encoding == PN_TABLE_EVSM) {
+        v[0] = pn_dexp((double)c_positive * (d - 1.0));
+        v[1] = v[0] * v[0];
+        if (moments == 4) {
+            v[2] = pn_dexp(-(double)c_negative * d);
+            v[3] = v[2] * v[2];
+        }
+        return;
+    }
+    v[0] = d;
+    for (int k = 1; k < moments; ++k) v[k] = v[k - 1] * d;
 }
 
-PN_FN void sat_texel_values(pn_float z, const SatParams p, int first, int count, pn_double* v)
+PN_FN void sat_texel_values(pn_float z, const SatParams p, int moments, pn_double* v)
 {
-    texel_values_from(z, p.encoding, p.exponent_positive, p.exponent_negative, first, count, v);
+    texel_values(z, p.encoding, p.exponent_positive, p.exponent_negative, moments, v);
 }
 
 /* The `limbs` 16-bit limbs of v in [0, 1] rounded to 16 limbs bits, most
@@ -191,24 +161,18 @@ PN_FN void sat_depth_limbs2(pn_float z, pn_uint* out)
     out[1] = pn_float_to_uint(q - l0 * 65536.0f);
 }
 
-/* Values [first, first + values) of the table: their planes, carries and
- * column sums are theirs alone, so that groups of values can be built apart
- * (simd/cpu_moment_table.cpp). `depth_in_float`: the group starts with the
- * depth itself with 2 limbs (a VSM table), whose limbs sat_depth_limbs2 forms
- * at float width (measured: docs/moment_table.md); the other values go
- * through double. */
+/* `depth_in_float`: value 0 is the depth itself with 2 limbs (a VSM table),
+ * whose limbs sat_depth_limbs2 forms at float width (measured:
+ * docs/moment_table.md); the other values go through double. */
 PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                           PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
-                          PN_GLOBAL int* bad_rows, const SatParams p, int first, int values, int limbs,
-                          int depth_in_float, int x0, int x1, int y0, int y1)
+                          PN_GLOBAL int* bad_rows, const SatParams p, int moments, int limbs, int depth_in_float,
+                          int x0, int x1, int y0, int y1)
 {
-    const int planes = values * limbs;
-    PN_GLOBAL uint* own_table = PN_PLANE(table, p.table, first * limbs);
-    PN_GLOBAL uint* own_columns = PN_PLANE(columns, p.columns, first * limbs);
-    PN_GLOBAL uint* own_carry = carry + first * limbs * p.depth.height;
+    const int planes = moments * limbs;
     for (int y = y0; y < y1; ++y) {
         pn_uint row_sum[PN_MAX_PLANES];
-        for (int k = 0; k < planes; ++k) row_sum[k] = own_carry[k * p.depth.height + y];
+        for (int k = 0; k < planes; ++k) row_sum[k] = carry[k * p.depth.height + y];
         pn_mask bad = sat_depth_outside(0.0f);
         PN_FOR_STRIPS(x, x0, x1)
         {
@@ -216,62 +180,48 @@ PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
             bad = pn_or(bad, depth_outside(stored, p.convention));
             const pn_float z = depth_to_unclamped(stored, p.convention);  /* both clamp it next */
             pn_double v[4];
-            sat_texel_values(z, p, first, values, v);
+            sat_texel_values(z, p, moments, v);
             pn_uint q[PN_MAX_PLANES];
             if (depth_in_float) sat_depth_limbs2(pn_clamp(z, 0.0f, 1.0f), q);
-            for (int k = depth_in_float; k < values; ++k) sat_limbs(v[k], limbs, q + k * limbs);
+            for (int k = depth_in_float; k < moments; ++k) sat_limbs(v[k], limbs, q + k * limbs);
             pn_uint sum[PN_MAX_PLANES];
             for (int k = 0; k < planes; ++k) {
-                PN_GLOBAL uint* column = PN_PLANE(own_columns, p.columns, k);
+                PN_GLOBAL uint* column = PN_PLANE(columns, p.columns, k);
                 const pn_uint row_prefix = pn_uscan_add(q[k]) + row_sum[k];
                 sum[k] = pn_uload(column, p.columns, x, column_row) + row_prefix;
                 pn_ustore(column, p.columns, x, column_row, sum[k]);
                 row_sum[k] = pn_ulast(row_prefix);
             }
-            for (int k = 0; k < values; ++k) {
-                pn_ustore_pair_stream(PN_PLANE(own_table, p.table, k * limbs), p.table, x, y + 1, sum[k * limbs],
+            for (int k = 0; k < moments; ++k) {
+                pn_ustore_pair_stream(PN_PLANE(table, p.table, k * limbs), p.table, x, y + 1, sum[k * limbs],
                                       sum[k * limbs + 1]);
                 if (limbs == 3)
-                    pn_ustore_stream(PN_PLANE(own_table, p.table, k * limbs + 2), p.table, x, y + 1,
-                                     sum[k * limbs + 2]);
+                    pn_ustore_stream(PN_PLANE(table, p.table, k * limbs + 2), p.table, x, y + 1, sum[k * limbs + 2]);
             }
         }
-        for (int k = 0; k < planes; ++k) own_carry[k * p.depth.height + y] = pn_ulast_value(row_sum[k]);
+        for (int k = 0; k < planes; ++k) carry[k * p.depth.height + y] = pn_ulast_value(row_sum[k]);
         pn_flag_any(bad_rows, y, bad);
     }
 }
 
-/* Values [first, first + values): all of them (values == p.moments, first 0)
- * or a group of 1 or 2. The counts as literals let the compiler unroll the
+/* The value and limb counts as literals let the compiler unroll the
  * per-plane loops and keep the row sums in registers (measured:
  * docs/moment_table.md). */
 PN_FN void sat_block_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
                            PN_GLOBAL uint* carry, PN_GLOBAL uint* columns, int column_row,
-                           PN_GLOBAL int* bad_rows, const SatParams p, int first, int values,
-                           int x0, int x1, int y0, int y1)
+                           PN_GLOBAL int* bad_rows, const SatParams p, int x0, int x1, int y0, int y1)
 {
     const int powers = p.encoding == PN_TABLE_POWERS;
-    const int l2 = p.limbs == 2;
-    if (values == p.moments && p.moments == 2 && l2 && powers)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 0, 2, 2, 1, x0, x1, y0, y1);
-    else if (values == p.moments && p.moments == 2 && l2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 0, 2, 2, 0, x0, x1, y0, y1);
-    else if (values == p.moments && p.moments == 4 && l2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 0, 4, 2, 0, x0, x1, y0, y1);
-    else if (values == p.moments && p.moments == 2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 0, 2, 3, 0, x0, x1, y0, y1);
-    else if (values == p.moments)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 0, 4, 3, 0, x0, x1, y0, y1);
-    else if (values == 1 && l2 && powers && first == 0)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 0, 1, 2, 1, x0, x1, y0, y1);
-    else if (values == 1 && l2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, first, 1, 2, 0, x0, x1, y0, y1);
-    else if (values == 1)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, first, 1, 3, 0, x0, x1, y0, y1);
-    else if (l2)
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, first, 2, 2, 0, x0, x1, y0, y1);
+    if (p.moments == 2 && p.limbs == 2 && powers)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, 1, x0, x1, y0, y1);
+    else if (p.moments == 2 && p.limbs == 2)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 2, 0, x0, x1, y0, y1);
+    else if (p.moments == 4 && p.limbs == 2)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 2, 0, x0, x1, y0, y1);
+    else if (p.moments == 2)
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 2, 3, 0, x0, x1, y0, y1);
     else
-        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, first, 2, 3, 0, x0, x1, y0, y1);
+        sat_rows_exact(depth, table, carry, columns, column_row, bad_rows, p, 4, 3, 0, x0, x1, y0, y1);
 }
 
 /* Banded schedule, pass 1: band `pn_task` of `band_height` rows becomes a
@@ -283,8 +233,7 @@ PN_KERNEL void sat_bands_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T* ta
     PN_TASK_BEGIN((p.depth.height + p.band_height - 1) / p.band_height);                                           \
     const int y0 = pn_task * p.band_height;                                                                        \
     const int y1 = y0 + p.band_height < p.depth.height ? y0 + p.band_height : p.depth.height;                      \
-    sat_block_##variant(depth, table, carry, columns, pn_task, bad_rows, p, 0, p.moments, 0, p.depth.width,       \
-                        y0, y1);                                                                                   \
+    sat_block_##variant(depth, table, carry, columns, pn_task, bad_rows, p, 0, p.depth.width, y0, y1);             \
 }
 PN_TABLE_VARIANTS(PN_SAT_BANDS_KERNEL)
 

@@ -35,18 +35,16 @@ namespace penumbra::cpu::PN_ISA_NAMESPACE {
 // Streaming stores are weakly ordered: fence them before the block is
 // reported done, so that whichever thread reads the table sees them.
 static void sat_block_float_fenced(const float* depth, float* table, float* carry, float* columns, int column_row,
-                                   int* bad_rows, SatParams p, int first, int values, int x0, int x1, int y0,
-                                   int y1)
+                                   int* bad_rows, SatParams p, int x0, int x1, int y0, int y1)
 {
-    sat_block_float(depth, table, carry, columns, column_row, bad_rows, p, first, values, x0, x1, y0, y1);
+    sat_block_float(depth, table, carry, columns, column_row, bad_rows, p, x0, x1, y0, y1);
     _mm_sfence();
 }
 
 static void sat_block_exact_fenced(const float* depth, u32* table, u32* carry, u32* columns, int column_row,
-                                   int* bad_rows, SatParams p, int first, int values, int x0, int x1, int y0,
-                                   int y1)
+                                   int* bad_rows, SatParams p, int x0, int x1, int y0, int y1)
 {
-    sat_block_exact(depth, table, carry, columns, column_row, bad_rows, p, first, values, x0, x1, y0, y1);
+    sat_block_exact(depth, table, carry, columns, column_row, bad_rows, p, x0, x1, y0, y1);
     _mm_sfence();
 }
 // The probes' int lanes stored as they are.

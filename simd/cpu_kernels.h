@@ -57,12 +57,9 @@ struct CpuKernels {
     // Not entry points: the helpers that only the CPU schedules call, a short
     // hand list (each set in simd/cpu_kernels.cpp, checked in tests/kernel_table_test.cpp).
 
-    // The wavefront schedule's block of kernels/moment_table.h (simd/cpu_moment_table.cpp):
-    // values [first, first + values) of rows [y0, y1), columns [x0, x1).
-    void (*sat_block_float)(const float*, float*, float*, float*, int, int*, SatParams, int first, int values,
-                            int x0, int x1, int y0, int y1);
-    void (*sat_block_exact)(const float*, u32*, u32*, u32*, int, int*, SatParams, int first, int values, int x0,
-                            int x1, int y0, int y1);
+    // The wavefront schedule's block of kernels/moment_table.h (simd/cpu_moment_table.cpp).
+    void (*sat_block_float)(const float*, float*, float*, float*, int, int*, SatParams, int, int, int, int);
+    void (*sat_block_exact)(const float*, u32*, u32*, u32*, int, int*, SatParams, int, int, int, int);
     // The spans of kernels/bilateral.h (simd/cpu_bilateral.cpp): the strips
     // from x0 to x1 of rows [y0, y1).
     void (*bilateral_full_span)(const float*, const float*, const float*, const int*, const float*, float*, int*,

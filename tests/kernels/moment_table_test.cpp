@@ -95,11 +95,11 @@ PN_BACKEND_TEST(MomentTableTest, ExactSumsMatchBruteForceOnEveryThreadCount)
     }
 }
 
-// With threads to spare the CPU build gives each group of values (z and z^2,
-// or z..z^2 and z^3..z^4, or each EVSM warp with its square) its own wavefront of blocks, cut into
-// column bands only when threads outnumber the values
-// (simd/cpu_moment_table.cpp): every table kind and thread count must store
-// the one-thread build's bits, padding included.
+// The CPU build's schedule depends on the arena's threads (one column band
+// per thread, simd/cpu_moment_table.cpp; a schedule that split the values
+// between threads was tried, docs/moment_table.md, "Session 17"): every
+// table kind and thread count must store the one-thread build's bits,
+// padding included.
 constexpr int kEvsmTable = 1;  // PN_TABLE_EVSM (kernels/params.h)
 
 struct TableKind {
