@@ -95,6 +95,56 @@ PN_BACKEND_TEST(MomentTableTest, ExactSumsMatchBruteForceOnEveryThreadCount)
     }
 }
 
+// The CPU build's schedule depends on the arena's threads (one column band
+// per thread, simd/cpu_moment_table.cpp; a schedule that split the values
+// between threads was tried, docs/moment_table.md, "Session 17"): every
+// table kind and thread count must store the one-thread build's bits,
+// padding included.
+constexpr int kEvsmTable = 1;  // PN_TABLE_EVSM (kernels/params.h)
+
+struct TableKind {
+    int moments, limbs;
+    Precision precision;
+    TableValues values;
+};
+
+std::vector<TableKind> table_kinds()
+{
+    const TableValues evsm{kEvsmTable, 5.0f, 3.0f, {}};
+    return {{2, 2, Precision::Exact, {}},   {2, 3, Precision::Exact, {}},   {4, 2, Precision::Exact, {}},
+            {4, 3, Precision::Exact, {}},   {2, 3, Precision::Exact, evsm}, {4, 3, Precision::Exact, evsm},
+            {2, 1, Precision::Float, {}},   {4, 1, Precision::Float, {}}};
+}
+
+// The first element (4 bytes) where two tables' storages differ, or -1.
+long first_difference(const MomentTable& a, const MomentTable& b)
+{
+    const auto* x = reinterpret_cast<const std::uint32_t*>(a.storage());
+    const auto* y = reinterpret_cast<const std::uint32_t*>(b.storage());
+    for (std::size_t i = 0; i < a.storage_elements(); ++i)
+        if (x[i] != y[i]) return long(i);
+    return -1;
+}
+
+PN_BACKEND_TEST(MomentTableTest, EveryThreadCountStoresTheOneThreadBuildsBits)
+{
+    Context& ctx = PN_CONTEXT_OR_SKIP(backend);
+    for (Size s : std::vector<Size>{{1, 1}, {7, 3}, {33, 9}, {397, 71}})
+        for (const TableKind& kind : table_kinds()) {
+            const Image depth = testing::random_depth(s.w, s.h, 5u * s.w + s.h);
+            auto build = [&](int threads) {
+                MomentTable table(s.w, s.h, kind.moments, kind.precision, kind.limbs, kind.values);
+                tbb::task_arena(threads).execute([&] { build_moment_table(ctx, depth, table); });
+                return table;
+            };
+            const MomentTable one = build(1);
+            for (int threads : {2, 3, 4, 5})
+                ASSERT_EQ(first_difference(build(threads), one), -1)
+                    << s.w << "x" << s.h << ", " << kind.moments << " values x " << kind.limbs << " limbs, "
+                    << (kind.values.kind == kEvsmTable ? "evsm" : "powers") << ", " << threads << " threads";
+        }
+}
+
 // Depths where rounding to 32 bits is delicate: exact ties (k + 1/2) 2^-32,
 // their float neighbours, the carry into limb 0 at (2^16 - 1/2) 2^-32, tiny
 // and subnormal depths, 1 and just below 1. A VSM table (2 values x 2 limbs)
