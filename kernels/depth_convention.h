@@ -159,7 +159,7 @@ PN_FN pn_float depth_lit(pn_float stored, pn_float threshold, DepthConversion c)
  * percentage-closer family's host). */
 PN_FN pn_float depth_fetch(PN_GLOBAL const float* depth, DirectMap m, pn_int x, pn_int y)
 {
-    return depth_checked_to_normalized(pn_fetch(depth, m.rows, x, y - m.first_row), m.convention);
+    return depth_checked_to_normalized(pn_fetch_rows(depth, m.rows, m.first_row, x, y), m.convention);
 }
 
 #endif
