@@ -113,19 +113,6 @@ PN_FN void direct_box_sums(PN_GLOBAL const float* depth, DirectMap map, TexelWin
         }
 }
 
-/* The map a direct entry reads: `direct` as the host or the CPU's band
- * schedule set it, or, left zeroed (Params filled by hand), the whole map
- * of dims `table` in the receivers' convention `c`. */
-PN_FN DirectMap direct_map(DirectMap direct, pn_dims table, DepthConversion c)
-{
-    if (direct.rows.height > 0) return direct;
-    DirectMap whole;
-    whole.rows = table;
-    whole.first_row = 0;
-    whole.convention = c;
-    return whole;
-}
-
 /* The window's means of the values: the direct counterpart of a table's
  * box query (`depth`: the map's rows `map` holds, stored in its convention,
  * converted per tap without clamps: the host checked the map's range up

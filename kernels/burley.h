@@ -29,7 +29,8 @@
  *    opacity is clamp(1 - (z - z_b) / falloff, 0, 1), fading shadows whose
  *    occluder is far; visibility = 1 - occlusion * opacity.
  * Output: visibility in [0, 1]. Cost: blocker_samples + filter_samples
- * fetches. Keep in sync with tests/support/soft_pcf_reference.cpp.
+ * fetches. Keep in sync with tests/support/soft_pcf_reference.cpp. The map
+ * is read through a DirectMap, as in kernels/pcss.h.
  */
 #ifndef PENUMBRA_BURLEY_H
 #define PENUMBRA_BURLEY_H
@@ -43,11 +44,11 @@ PN_FN pn_float burley_cone_slope(const SoftPcfParams p, PcfReceiver r)
 /* sampleDepth: the cone-weighted mean depth of the blocking taps, the taps
  * concentrated at the centre (radius y), each compared on the cone and
  * weighted 1 - 0.9 r / R (r / R = y). */
-PN_FN pn_float burley_blocker_depth(PN_GLOBAL const float* depth, const SoftPcfParams p, PcfReceiver r,
-                                    pn_float cone_slope, pn_mask* found)
+PN_FN pn_float burley_blocker_depth(PN_GLOBAL const float* depth, const SoftPcfParams p, DirectMap held,
+                                    PcfReceiver r, pn_float cone_slope, pn_mask* found)
 {
-    return hammersley_blocker_depth(depth, p.depth, p.convention, p.bias, r, p.max_radius, p.blocker_samples, 0,
-                                    cone_slope, 0.9f, found);
+    return hammersley_blocker_depth(depth, p.depth, held, p.bias, r, p.max_radius, p.blocker_samples, 0, cone_slope,
+                                    0.9f, found);
 }
 
 /* Section 3.3: the shadow fades as its occluder gets farther. */
@@ -63,16 +64,23 @@ PN_KERNEL void burley(PN_GLOBAL const float* depth, PN_GLOBAL const float* recei
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
     const PcfReceiver r =
         pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, p.convention, pn_x, pn_y, bad_rows);
+    const DirectMap held = direct_map(p.direct, p.depth, p.convention);
     const pn_float cone_slope = burley_cone_slope(p, r);
     pn_mask found;
-    const pn_float z_blocker = burley_blocker_depth(depth, p, r, cone_slope, &found);
+    const pn_float z_blocker = burley_blocker_depth(depth, p, held, r, cone_slope, &found);
     /* found implies z > z_blocker >= 0 for a valid map; the floor keeps the
      * lanes without a blocker (whose result is discarded) finite. */
     const pn_float radius =
         p.min_radius + (p.max_radius - p.min_radius) * (1.0f - z_blocker / pn_max(r.z, 1e-30f));
+    /* At most max_radius (and a rounding) for z_b <= z, so inside the band
+     * in practice; a blocker beyond the receiver (a negative bias) may
+     * widen it. */
+    if (hammersley_disc_leaves_band(held, p.depth, r, radius, pn_and(found, pn_active))) {
+        hammersley_store_rerun(out, p.out, pn_x, pn_y);
+        return;
+    }
     const pn_float occlusion =
-        1.0f -
-        hammersley_disc_visibility(depth, p.depth, p.convention, p.bias, r, radius, p.filter_samples, cone_slope);
+        1.0f - hammersley_disc_visibility(depth, p.depth, held, p.bias, r, radius, p.filter_samples, cone_slope);
     const pn_float visibility = 1.0f - occlusion * burley_opacity(p, r.z, z_blocker);
     pn_store(out, p.out, pn_x, pn_y, pn_select(found, visibility, 1.0f));
 }

@@ -64,21 +64,6 @@ PN_FN pn_float depth_to_unclamped(pn_float z, DepthConversion c)
     return far_side / (1.0f + c.scale * near_side);
 }
 
-/* Rows [y0, y1) of a stored map (dims d) converted by depth_to_unclamped
- * into rows 0 .. y1 - y0 of `out` (dims o): the CPU's direct window sums
- * convert the band of rows their windows read once, not each texel once per
- * window (simd/cpu_direct_sums.cpp). The arithmetic of the per-tap
- * conversion, so the same values. */
-PN_FN void depth_convert_rows(PN_GLOBAL const float* depth, pn_dims d, PN_GLOBAL float* out, pn_dims o,
-                              DepthConversion c, int y0, int y1)
-{
-    for (int y = y0; y < y1; ++y)
-        PN_FOR_STRIPS(x, 0, d.width)
-        {
-            pn_store(out, o, x, y - y0, depth_to_unclamped(pn_load(depth, d, x, y), c));
-        }
-}
-
 /* The same clamped into [0, 1], for stored values the caller checks or flags
  * (a map checked up front, a table build's flag): equal to
  * depth_to_normalized on every value in the range, one clamp fewer. */
@@ -86,6 +71,36 @@ PN_FN pn_float depth_checked_to_normalized(pn_float stored, DepthConversion c)
 {
     if (c.kind == PN_DEPTH_NORMALIZED) return stored;
     return pn_clamp(depth_to_unclamped(stored, c), 0.0f, 1.0f);
+}
+
+/* Rows [y0, y1) of a stored, checked map (dims d) converted by
+ * depth_checked_to_normalized into rows 0 .. y1 - y0 of `out` (dims o): the
+ * CPU's direct window sums and soft discs convert the band of rows their
+ * taps read once, not each texel once per tap (simd/cpu_direct_sums.cpp).
+ * The per-tap arithmetic, so the same values: the discs' taps convert so;
+ * the window sums' taps skip the clamp, which texel_values applies anyway
+ * (kernels/moment_table.h), and a clamp applied twice is applied once. */
+PN_FN void depth_convert_rows(PN_GLOBAL const float* depth, pn_dims d, PN_GLOBAL float* out, pn_dims o,
+                              DepthConversion c, int y0, int y1)
+{
+    for (int y = y0; y < y1; ++y)
+        PN_FOR_STRIPS(x, 0, d.width)
+        {
+            pn_store(out, o, x, y - y0, depth_checked_to_normalized(pn_load(depth, d, x, y), c));
+        }
+}
+
+/* The map an entry reading a DirectMap (kernels/params.h) reads: `direct` as
+ * the host or the CPU's band schedule set it, or, left zeroed (Params filled
+ * by hand), the whole map of dims `map` in the receivers' convention `c`. */
+PN_FN DirectMap direct_map(DirectMap direct, pn_dims map, DepthConversion c)
+{
+    if (direct.rows.height > 0) return direct;
+    DirectMap whole;
+    whole.rows = map;
+    whole.first_row = 0;
+    whole.convention = c;
+    return whole;
 }
 
 /* The normalised linear depth of a stored value, clamped (top of this file):
@@ -138,11 +153,13 @@ PN_FN pn_float depth_lit(pn_float stored, pn_float threshold, DepthConversion c)
     return pn_select(lit, 1.0f, 0.0f);
 }
 
-/* A shadow map's texel (x, y), clamped to the map, as normalised depth; the
- * map's range was checked up front (the percentage-closer family's host). */
-PN_FN pn_float depth_fetch(PN_GLOBAL const float* depth, pn_dims map, pn_int x, pn_int y, DepthConversion c)
+/* A shadow map's texel (x, y) (y a row of the whole map), as normalised
+ * depth, read from the rows `m` holds (clamped into them: a row they lack
+ * reads their nearest); the map's range was checked up front (the
+ * percentage-closer family's host). */
+PN_FN pn_float depth_fetch(PN_GLOBAL const float* depth, DirectMap m, pn_int x, pn_int y)
 {
-    return depth_checked_to_normalized(pn_fetch(depth, map, x, y), c);
+    return depth_checked_to_normalized(pn_fetch_rows(depth, m.rows, m.first_row, x, y), m.convention);
 }
 
 #endif

@@ -64,6 +64,12 @@
  *                                   read again soon (non-temporal on SIMD)
  *   pn_fetch(plane, dims, x, y)     per-lane coordinates, clamp-to-edge: the one
  *                                   boundary helper
+ *   pn_fetch_rows(plane, dims, first_row, x, y)  pn_fetch of a plane holding
+ *                                   rows [first_row, first_row + height) of a
+ *                                   taller image, y one of that image's rows
+ *                                   (clamped into those held): on SIMD the same
+ *                                   vector work per tap as pn_fetch, the row
+ *                                   offset folded into the gather's base once
  *   pn_load_clamped(plane, dims, x, y)  the strip at uniform (x, y), clamp-to-edge:
  *                                   lane i reads column clamp(x + i, 0, width - 1)
  *                                   of row clamp(y, 0, height - 1); x and y may lie

@@ -138,7 +138,7 @@ PN_FN pn_float hammersley_texel(pn_float t, int size)
     return pn_clamp(pn_floor(t), 0.0f, (float)size - 1.0f);
 }
 
-/* What one tap of a disc reads: the stored depth, and the depth it must
+/* What one tap of a disc reads: its depth (normalised), and the depth it must
  * reach to be lit under the family's bias at the texel it reads
  * (pcf_tap_reference), before any cone. */
 typedef struct {
@@ -146,16 +146,18 @@ typedef struct {
     pn_float reference;
 } DiscSample;
 
-/* Tap t of the disc of `radius` (texture units) around receiver r: the tap
+/* Tap t of the disc of `radius` (texture units) around receiver r on the
+ * map of dims `map`, read from the rows `held` holds (the whole map, or a
+ * band the CPU schedule converted; hammersley_disc_leaves_band): the tap
  * sits at (u W + dx radius W, v H + dy radius H) texels. */
-PN_FN DiscSample hammersley_sample(PN_GLOBAL const float* depth, pn_dims map, DepthConversion c, PcfBias b,
+PN_FN DiscSample hammersley_sample(PN_GLOBAL const float* depth, pn_dims map, DirectMap held, PcfBias b,
                                    PcfReceiver r, pn_float radius, DiscTap t)
 {
     const float w = (float)map.width, h = (float)map.height;
     const pn_float tx = hammersley_texel(r.u * w + t.dx * radius * w, map.width);
     const pn_float ty = hammersley_texel(r.v * h + t.dy * radius * h, map.height);
     DiscSample s;
-    s.depth = depth_fetch(depth, map, pn_to_int(tx), pn_to_int(ty), c);
+    s.depth = depth_fetch(depth, held, pn_to_int(tx), pn_to_int(ty));
     s.reference = pcf_tap_reference(r, b, map, tx, ty);
     return s;
 }
@@ -164,14 +166,14 @@ PN_FN DiscSample hammersley_sample(PN_GLOBAL const float* depth, pn_dims map, De
  * of `radius` (texture units): the fraction of n taps lit, a tap at distance
  * rho (texture units) from the centre lowered by the cone slope * rho
  * (slope 0: the family's bias alone; Burley's bias cone otherwise). */
-PN_FN pn_float hammersley_disc_visibility(PN_GLOBAL const float* depth, pn_dims map, DepthConversion c, PcfBias b,
+PN_FN pn_float hammersley_disc_visibility(PN_GLOBAL const float* depth, pn_dims map, DirectMap held, PcfBias b,
                                           PcfReceiver r, pn_float radius, int n, pn_float slope)
 {
     pn_float lit = 0.0f;
     DiscWalk walk = hammersley_walk(n, 1);
     for (int k = 0; k < n; ++k) {
         const DiscTap t = hammersley_walk_next(&walk);
-        const DiscSample s = hammersley_sample(depth, map, c, b, r, radius, t);
+        const DiscSample s = hammersley_sample(depth, map, held, b, r, radius, t);
         lit = lit + pcf_lit(s.depth, s.reference - slope * t.radius * radius);
     }
     return lit / (float)n;
@@ -183,7 +185,7 @@ PN_FN pn_float hammersley_disc_visibility(PN_GLOBAL const float* depth, pn_dims 
  * weighs 1 - weight_falloff * t.radius (pcss: 0, every tap 1; burley: 0.9,
  * Burley's 1 - 0.9 r / R). Returns the weighted mean depth of the blocking
  * taps; `found` marks the lanes with one (weights stay >= 0.1 > 0). */
-PN_FN pn_float hammersley_blocker_depth(PN_GLOBAL const float* depth, pn_dims map, DepthConversion c, PcfBias b,
+PN_FN pn_float hammersley_blocker_depth(PN_GLOBAL const float* depth, pn_dims map, DirectMap held, PcfBias b,
                                         PcfReceiver r,
                                         pn_float radius, int n, int uniform_density, pn_float cone_slope,
                                         float weight_falloff, pn_mask* found)
@@ -192,7 +194,7 @@ PN_FN pn_float hammersley_blocker_depth(PN_GLOBAL const float* depth, pn_dims ma
     DiscWalk walk = hammersley_walk(n, uniform_density);
     for (int k = 0; k < n; ++k) {
         const DiscTap t = hammersley_walk_next(&walk);
-        const DiscSample s = hammersley_sample(depth, map, c, b, r, radius, t);
+        const DiscSample s = hammersley_sample(depth, map, held, b, r, radius, t);
         const pn_mask blocks = s.depth < s.reference - cone_slope * t.radius * radius;
         const float weight = 1.0f - weight_falloff * t.radius;
         weighted = weighted + pn_select(blocks, weight * s.depth, 0.0f);
@@ -200,6 +202,32 @@ PN_FN pn_float hammersley_blocker_depth(PN_GLOBAL const float* depth, pn_dims ma
     }
     *found = total > 0.0f;
     return weighted / pn_select(*found, total, 1.0f);
+}
+
+/* Whether any lane of `lanes` has a disc of `radius` (texture units) with a
+ * tap in a row that `held` does not hold (uniform). A tap's row lies between
+ * those of v H - |radius| H and v H + |radius| H: |dy| <= 1, and each float
+ * step of hammersley_sample is monotonic, so testing the two extremes is
+ * exact. The whole map holds every row: no test. The CPU schedule sizes a
+ * band for the blocker search's fixed radius; a filter disc that grew
+ * beyond it sends its strip back to the whole map (PN_BAND_RERUN). */
+PN_FN int hammersley_disc_leaves_band(DirectMap held, pn_dims map, PcfReceiver r, pn_float radius, pn_mask lanes)
+{
+    if (held.rows.height >= map.height) return 0;
+    const float h = (float)map.height;
+    const pn_float reach = pn_abs(radius) * h;
+    const pn_float top = hammersley_texel(r.v * h - reach, map.height);
+    const pn_float bottom = hammersley_texel(r.v * h + reach, map.height);
+    const pn_mask inside =
+        pn_and(top >= (float)held.first_row, bottom < (float)(held.first_row + held.rows.height));
+    return pn_any(pn_and(lanes, pn_not(inside)));
+}
+
+/* The strip's result left to the schedule (see hammersley_disc_leaves_band). */
+PN_FN void hammersley_store_rerun(PN_GLOBAL float* out, pn_dims d, int x, int y)
+{
+    const pn_float rerun = PN_BAND_RERUN;
+    pn_store(out, d, x, y, rerun);
 }
 
 #endif

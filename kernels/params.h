@@ -36,18 +36,24 @@ typedef struct {
     float scale; /* linear: 1 / (far - near); perspective, reversed: k = (far - near) / near; else 0 */
 } DepthConversion;
 
-/* The shadow map as the direct window sums read it (kernels/box_window.h):
- * `rows` holds the map's rows [first_row, first_row + rows.height), stored in
+/* The shadow map as the direct window sums (kernels/box_window.h) and the
+ * soft percentage-closer discs (kernels/hammersley.h) read it: `rows` holds
+ * the map's rows [first_row, first_row + rows.height), stored in
  * `convention`. The host passes the whole map (first_row 0, the map's
  * convention); the CPU schedule may pass a band of rows it converted to
  * normalised depth once (simd/cpu_direct_sums.cpp). Zeroed (the table
- * lookups sharing the Params, Params filled by hand): the whole map of dims
- * `table` in the receivers' convention (direct_map). */
+ * lookups sharing the Params, Params filled by hand): the whole map in the
+ * receivers' convention (direct_map, kernels/depth_convention.h). */
 typedef struct {
     pn_dims rows;
     int first_row;
     DepthConversion convention;
 } DirectMap;
+/* Written into every lane of a strip by an entry reading a band whose taps
+ * would reach rows the band does not hold (a soft disc wider than the CPU
+ * schedule guessed): the schedule runs that strip again over the whole
+ * stored map (simd/cpu_direct_sums.h). Never a result: those lie in [0, 1]. */
+#define PN_BAND_RERUN (-1.0f)
 
 /* Summed-area table of depth moments (kernels/moment_table.h).
  * The table stores inclusive sums S(x, y) = sum of m(i, j) for i <= x, j <= y;
@@ -239,6 +245,7 @@ typedef struct {
     float bias_slope_per_depth; /* burley: the slope's growth per unit of receiver depth z */
     float falloff;       /* burley: opacity falloff distance in depth units; 0 = off */
     DepthConversion convention; /* the map's and the receivers' z */
+    DirectMap direct;    /* the map's rows the taps read (see DirectMap) */
 } SoftPcfParams;
 
 /* Ambient light rigs in spherical harmonics and ambient volumes

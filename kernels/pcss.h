@@ -23,6 +23,9 @@
  * Taps outside the map read the nearest edge texel (clamp to edge).
  * Output: visibility in [0, 1]. Cost: blocker_samples + filter_samples
  * fetches per receiver. Keep in sync with tests/support/soft_pcf_reference.cpp.
+ * The map is read through a DirectMap (kernels/params.h): on the CPU a band
+ * of rows converted once; a strip whose filter discs outgrow the band is
+ * left to the schedule (hammersley_disc_leaves_band).
  */
 #ifndef PENUMBRA_PCSS_H
 #define PENUMBRA_PCSS_H
@@ -30,10 +33,11 @@
 #define PN_PCSS_MIN_OCCLUDER 1e-4f /* z_b floor, as a fraction of z */
 
 /* Step 1: the plain mean depth of the blocking taps; `found` marks lanes with one. */
-PN_FN pn_float pcss_blocker_depth(PN_GLOBAL const float* depth, const SoftPcfParams p, PcfReceiver r, pn_mask* found)
+PN_FN pn_float pcss_blocker_depth(PN_GLOBAL const float* depth, const SoftPcfParams p, DirectMap held, PcfReceiver r,
+                                  pn_mask* found)
 {
-    return hammersley_blocker_depth(depth, p.depth, p.convention, p.bias, r, 0.5f * p.light_size, p.blocker_samples,
-                                    1, 0.0f, 0.0f, found);
+    return hammersley_blocker_depth(depth, p.depth, held, p.bias, r, 0.5f * p.light_size, p.blocker_samples, 1, 0.0f,
+                                    0.0f, found);
 }
 
 /* Step 2: the filter disc's radius, w / 2, in texture units. */
@@ -49,11 +53,16 @@ PN_KERNEL void pcss(PN_GLOBAL const float* depth, PN_GLOBAL const float* receive
     PN_PIXEL_BEGIN(p.out.width, p.out.height);
     const PcfReceiver r =
         pcf_load_receiver(receivers, p.receivers, p.depth, p.bias, p.convention, pn_x, pn_y, bad_rows);
+    const DirectMap held = direct_map(p.direct, p.depth, p.convention);
     pn_mask found;
-    const pn_float z_blocker = pcss_blocker_depth(depth, p, r, &found);
+    const pn_float z_blocker = pcss_blocker_depth(depth, p, held, r, &found);
     const pn_float radius = pcss_filter_radius(p, r.z, z_blocker);
+    if (hammersley_disc_leaves_band(held, p.depth, r, radius, pn_and(found, pn_active))) {
+        hammersley_store_rerun(out, p.out, pn_x, pn_y);
+        return;
+    }
     const pn_float visibility =
-        hammersley_disc_visibility(depth, p.depth, p.convention, p.bias, r, radius, p.filter_samples, 0.0f);
+        hammersley_disc_visibility(depth, p.depth, held, p.bias, r, radius, p.filter_samples, 0.0f);
     pn_store(out, p.out, pn_x, pn_y, pn_select(found, visibility, 1.0f));
 }
 

@@ -4,9 +4,10 @@
 // the run-time KernelId made compile-time by the table's one switch
 // (detail::visit_lookup), the source's buffers (one, or several arrays) in
 // the entry's order (detail::source_buffers). No method is named here: a new
-// lookup-shaped entry runs with no edit of this file. The direct window sums
-// over a map in another convention than normalised depth take their own
-// schedule (simd/cpu_direct_sums.h), chosen by their Params' DirectMap.
+// lookup-shaped entry runs with no edit of this file. The entries reading a
+// DirectMap (the direct window sums, pcss, burley) over a map in another
+// convention than normalised depth take their own schedule
+// (simd/cpu_direct_sums.h), chosen by their Params' DirectMap.
 #include <tuple>
 #include <type_traits>
 
@@ -30,7 +31,7 @@ void CpuBackend::receiver_lookup(KernelId kernel, const detail::LookupSource& so
         if constexpr (ReadsDirectMap<std::decay_t<decltype(p)>> && std::tuple_size_v<Sources> == 1 &&
                       std::is_same_v<std::tuple_element_t<0, Sources>, const float*>)
             if (converts_per_band(p))
-                return launch_direct_sums<K>(kernels_, std::get<0>(sources), receivers, out, bad_rows, p);
+                return launch_in_bands<K>(kernels_, std::get<0>(sources), receivers, out, bad_rows, p);
         std::apply(
             [&](const auto*... buffers) {
                 launch_pixels<K>(kernels_, out.width(), out.height(), buffers..., receivers.plane(0), out.plane(0),

@@ -103,6 +103,10 @@ PN_FN float pn_fetch(const float* plane, pn_dims d, std::int32_t x, std::int32_t
 {
     return plane[pn_index(d, pn_iclamp(x, 0, d.width - 1), pn_iclamp(y, 0, d.height - 1))];
 }
+PN_FN float pn_fetch_rows(const float* plane, pn_dims d, int first_row, std::int32_t x, std::int32_t y)
+{
+    return pn_fetch(plane, d, x, pn_iclamp(y, first_row, first_row + d.height - 1) - first_row);
+}
 PN_FN float pn_load_clamped(const float* plane, pn_dims d, int x, int y) { return pn_fetch(plane, d, x, y); }
 PN_FN bool pn_strips_inside(pn_dims d, int x0, int x1) { return x0 >= 0 && x1 < d.width; }
 PN_FN float pn_load_inside(const float* plane, pn_dims d, int x, int y) { return plane[pn_index(d, x, y)]; }

@@ -487,6 +487,30 @@ PN_FN pn_float pn_fetch(const float* plane, pn_dims d, pn_int x, pn_int y)
     const pn_int cy = pn_iclamp(y, pn_int(0), pn_int(d.height - 1));
     return pn_gather(plane, cy * d.pitch + cx);
 }
+// Rows [first_row, first_row + height) of a taller image: the lanes' indices
+// stay the image's (cy * pitch + cx, as pn_fetch's), and the gather's base
+// moves back by first_row rows, computed once (a loop invariant) rather than
+// a subtraction per tap. The base is moved as an integer: no C++ pointer
+// leaves the buffer (the instruction adds base and index itself). SSE4.2's
+// gather is a loop of scalar loads anyway, so it adds the offset per lane.
+PN_FN pn_float pn_fetch_rows(const float* plane, pn_dims d, int first_row, pn_int x, pn_int y)
+{
+    const pn_int cx = pn_iclamp(x, pn_int(0), pn_int(d.width - 1));
+    const pn_int cy = pn_iclamp(y, pn_int(first_row), pn_int(first_row + d.height - 1));
+    const pn_int index = cy * d.pitch + cx;
+    const std::ptrdiff_t offset = -std::ptrdiff_t(first_row) * d.pitch;
+#if defined(PN_ISA_avx512) || defined(PN_ISA_avx2)
+    const auto base = reinterpret_cast<const float*>(reinterpret_cast<std::uintptr_t>(plane) +
+                                                     std::uintptr_t(offset) * sizeof(float));
+    return pn_gather(base, index);
+#else
+    alignas(64) std::int32_t lanes[kLanes];
+    alignas(64) float values[kLanes];
+    index.store_aligned(lanes);
+    for (int i = 0; i < kLanes; ++i) values[i] = plane[offset + lanes[i]];
+    return pn_float::load_aligned(values);
+#endif
+}
 // Lane i holds i: the column offsets of a strip's pixels.
 PN_FN pn_int pn_int_lane_offsets()
 {

@@ -52,6 +52,7 @@ void family_lookup(Context& context, const std::string& op, const Image& map, co
     p.out = dims_of(out);
     p.bias = kernel_bias(bias);
     p.convention = kernel_conversion(convention);
+    if constexpr (requires { p.direct; }) p.direct = DirectMap{p.depth, 0, p.convention};  // the soft discs' map
     checked_lookup(op, prepared, [&](int* bad_rows) {
         receiver_lookup<K>(context.impl(), map, prepared, p, out, bad_rows);
     });
