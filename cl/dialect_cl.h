@@ -123,6 +123,12 @@ PN_FN void pn_ugather_pair(global const uint* ptr, int index, uint* first, uint*
  * component. The join is exact (both products and the sum below 2^49). */
 typedef uint2 pn_upair;
 PN_FN pn_upair pn_ugather_upair(global const uint* ptr, int index) { return vload2(0, ptr + index); }
+PN_FN void pn_ugather_upair_both(global const uint* a, global const uint* b, int index, pn_upair* from_a,
+                                 pn_upair* from_b)
+{
+    *from_a = vload2(0, a + index);
+    *from_b = vload2(0, b + index);
+}
 /* One 16-byte load (vload4 needs only the element's alignment). */
 PN_FN void pn_ugather_upair2(global const uint* ptr, int index, pn_upair* first, pn_upair* second)
 {

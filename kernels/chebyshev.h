@@ -114,8 +114,10 @@ PN_FN DepthMoments box_moments_exact(PN_GLOBAL const uint* table, pn_dims t, int
 {
     const pn_double inverse_area = 1.0 / pn_int_to_double((x1 - x0) * (y1 - y0));  /* as direct_box_means */
     DepthMoments m;
-    m.mean = sat_limb_box_sum(table, t, limbs, 0, 1.0 / 65536.0, x0, x1, y0, y1) * inverse_area;
-    m.mean_sq = sat_limb_box_sum(table, t, limbs, 1, 1.0 / 65536.0, x0, x1, y0, y1) * inverse_area;
+    pn_double sums[2];
+    sat_limb_box_sums01(table, t, limbs, 1.0 / 65536.0, x0, x1, y0, y1, sums);
+    m.mean = sums[0] * inverse_area;
+    m.mean_sq = sums[1] * inverse_area;
     return m;
 }
 

@@ -87,6 +87,9 @@
  *                                   (both in bounds); a - b wraps each part on its
  *                                   own; pn_upair_join(v) = first 2^16 + second as
  *                                   pn_double (exact: a limb pair's window sum)
+ *   pn_ugather_upair_both(a, b, index, &from_a, &from_b)  pn_ugather_upair of two
+ *                                   planes at the same indices (SIMD: per-lane loads,
+ *                                   each lane's index extracted once for both)
  *   pn_ugather_upair2(ptr, index, &first, &second)  the pairs at index and
  *                                   index + 2 (16 contiguous bytes, all in bounds)
  *   pn_ustore_pair_stream(plane, dims, x, y, first, second)  two strips

@@ -325,6 +325,20 @@ PN_FN pn_upair sat_box_sum_pair(PN_GLOBAL const uint* pair, pn_dims t, pn_int x0
     return (d - c) - (b - a);
 }
 
+/* sat_box_sum_pair of two pair planes at once (values 0 and 1), each
+ * corner's index extracted once for both (pn_ugather_upair_both). */
+PN_FN void sat_box_sum_pairs(PN_GLOBAL const uint* pair_a, PN_GLOBAL const uint* pair_b, pn_dims t, pn_int x0,
+                             pn_int x1, pn_int y0, pn_int y1, pn_upair* sums)
+{
+    pn_upair a[4], b[4];
+    pn_ugather_upair_both(pair_a, pair_b, sat_corner_index(t, x0, y0) * 2, &a[0], &b[0]);
+    pn_ugather_upair_both(pair_a, pair_b, sat_corner_index(t, x1, y0) * 2, &a[1], &b[1]);
+    pn_ugather_upair_both(pair_a, pair_b, sat_corner_index(t, x0, y1) * 2, &a[2], &b[2]);
+    pn_ugather_upair_both(pair_a, pair_b, sat_corner_index(t, x1, y1) * 2, &a[3], &b[3]);
+    sums[0] = (a[3] - a[2]) - (a[1] - a[0]);
+    sums[1] = (b[3] - b[2]) - (b[1] - b[0]);
+}
+
 /* The value of one step of limb 0: 2^-16 in limb tables; a table of one
  * limb per value holds 16-bit steps v * 65535 instead (kernels/encoded_table.h,
  * the opt-in 16-bit storages). */
@@ -346,6 +360,22 @@ PN_FN pn_double sat_limb_box_sum(PN_GLOBAL const uint* table, pn_dims t, int lim
     if (limbs == 2) return total;
     const pn_uint s2 = sat_box_sum_exact(PN_PLANE(table, t, k * limbs + 2), t, x0, x1, y0, y1);
     return total + pn_uint_to_double(s2) * (unit * (1.0 / 4294967296.0));
+}
+
+/* Values 0 and 1 of a 2-limb table over the texels [x0, x1) x [y0, y1) into
+ * sums[0] and sums[1]: sat_limb_box_sum's doubles, both pair planes' corners
+ * read together (VSM, VSSM's search; docs/moment_table.md, "Session 17");
+ * other limb counts value by value. */
+PN_FN void sat_limb_box_sums01(PN_GLOBAL const uint* table, pn_dims t, int limbs, double unit, pn_int x0, pn_int x1,
+                               pn_int y0, pn_int y1, pn_double* sums)
+{
+    if (limbs != 2) {
+        for (int k = 0; k < 2; ++k) sums[k] = sat_limb_box_sum(table, t, limbs, k, unit, x0, x1, y0, y1);
+        return;
+    }
+    pn_upair pairs[2];
+    sat_box_sum_pairs(PN_PLANE(table, t, 0), PN_PLANE(table, t, 2), t, x0, x1, y0, y1, pairs);
+    for (int k = 0; k < 2; ++k) sums[k] = pn_upair_join(pairs[k]) * (unit * (1.0 / 65536.0));
 }
 
 /* A window with fractional edges, in exclusive-corner coordinates clipped to

@@ -122,6 +122,12 @@ struct pn_upair {
 };
 PN_FN pn_upair operator-(pn_upair a, pn_upair b) { return {a.first - b.first, a.second - b.second}; }
 PN_FN pn_upair pn_ugather_upair(const std::uint32_t* ptr, std::int32_t index) { return {ptr[index], ptr[index + 1]}; }
+PN_FN void pn_ugather_upair_both(const std::uint32_t* a, const std::uint32_t* b, std::int32_t index, pn_upair* from_a,
+                                 pn_upair* from_b)
+{
+    *from_a = pn_ugather_upair(a, index);
+    *from_b = pn_ugather_upair(b, index);
+}
 PN_FN void pn_ugather_upair2(const std::uint32_t* ptr, std::int32_t index, pn_upair* first, pn_upair* second)
 {
     *first = pn_ugather_upair(ptr, index);

@@ -375,13 +375,48 @@ PN_FN pn_upair pn_ugather_upair(const uint* ptr, pn_int index)
     return {pn_uint::load_aligned(pairs), pn_uint::load_aligned(pairs + kLanes)};
 #endif
 }
+// pn_ugather_upair of two planes at the same indices (a box's corners of
+// values 0 and 1: VSM, VSSM's search): on AVX-512 and AVX2 one 64-bit load
+// per lane and plane, each lane's index extracted once for both, instead of
+// four 64-bit gathers (docs/moment_table.md, "Session 17").
+PN_FN void pn_ugather_upair_both(const uint* a, const uint* b, pn_int index, pn_upair* from_a, pn_upair* from_b)
+{
+#if defined(PN_ISA_avx512) || defined(PN_ISA_avx2)
+    alignas(64) std::int32_t lanes[kLanes];
+    index.store_aligned(lanes);
+    // Lanes i and i + 1 of one plane in one 128-bit part.
+    const auto two = [&](const uint* plane, int i) {
+        const __m128i low = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(plane + lanes[i]));
+        return _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(low), reinterpret_cast<const double*>(plane + lanes[i + 1])));
+    };
+#endif
+#if defined(PN_ISA_avx512)
+    const auto half = [&](const uint* plane, int i) {  // lanes i .. i + 7
+        __m512i v = _mm512_castsi128_si512(two(plane, i));
+        v = _mm512_inserti64x2(v, two(plane, i + 2), 1);
+        v = _mm512_inserti64x2(v, two(plane, i + 4), 2);
+        return _mm512_inserti64x2(v, two(plane, i + 6), 3);
+    };
+    *from_a = {half(a, 0), half(a, 8)};
+    *from_b = {half(b, 0), half(b, 8)};
+#elif defined(PN_ISA_avx2)
+    const auto half = [&](const uint* plane, int i) {  // lanes i .. i + 3
+        return _mm256_inserti128_si256(_mm256_castsi128_si256(two(plane, i)), two(plane, i + 2), 1);
+    };
+    *from_a = {half(a, 0), half(a, 4)};
+    *from_b = {half(b, 0), half(b, 4)};
+#else
+    *from_a = pn_ugather_upair(a, index);
+    *from_b = pn_ugather_upair(b, index);
+#endif
+}
 // Two adjacent pairs per lane, ptr[index .. index + 3]: a fractional
 // window's corners a and a + 1 of one row, 16 contiguous bytes. On AVX-512
 // and AVX2 one 128-bit load per lane and a few inserts and unpacks instead
 // of four 64-bit gathers: faster on Zen 5 for coherent and incoherent
 // receivers alike (docs/moment_table.md, "Session 16"). The box corners'
-// single pairs stay gathers: loads there sped up VSM but slowed MSM and
-// EVSM4 by 15-25%.
+// single pairs stay gathers (loads there sped up VSM but slowed MSM and
+// EVSM4 by 15-25%), except two planes at once (pn_ugather_upair_both).
 PN_FN void pn_ugather_upair2(const uint* ptr, pn_int index, pn_upair* first, pn_upair* second)
 {
 #if defined(PN_ISA_avx512) || defined(PN_ISA_avx2)
