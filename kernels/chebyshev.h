@@ -159,8 +159,15 @@ PN_FN DepthMoments fractional_moments_exact(PN_GLOBAL const uint* table, pn_dims
     const SatFractionalWindow w = sat_fractional_window(t, f.x0, f.x1, f.y0, f.y1);
     const pn_double area = fractional_area(f);
     DepthMoments m;
-    m.mean = sat_limb_fractional_sum(table, t, limbs, 0, 1.0 / 65536.0, w) / area;
-    m.mean_sq = sat_limb_fractional_sum(table, t, limbs, 1, 1.0 / 65536.0, w) / area;
+    pn_double sums[2];  /* the same doubles on either path (the binding's schedule choice) */
+    if (PN_FRACTIONAL_ROWS_IN_ORDER && limbs == 2) {
+        sat_limb_fractional_sums01(table, t, 1.0 / 65536.0, w, sums);
+    } else {
+        sums[0] = sat_limb_fractional_sum(table, t, limbs, 0, 1.0 / 65536.0, w);
+        sums[1] = sat_limb_fractional_sum(table, t, limbs, 1, 1.0 / 65536.0, w);
+    }
+    m.mean = sums[0] / area;
+    m.mean_sq = sums[1] / area;
     return m;
 }
 

@@ -506,6 +506,57 @@ PN_FN pn_double sat_fractional_weighted_pair(pn_upair s[4][4], SatFractionalWind
     return sat_fractional_weighted_rects(rect, w);
 }
 
+/* Row j of a fractional window in the pair planes of values 0 and 1 (a and
+ * b): its three x intervals' wrapped differences s[hi(i)] - s[lo(i)], both
+ * planes' corners read at once (pn_ugather_upair2_both). */
+PN_FN void sat_fractional_row_pairs(PN_GLOBAL const uint* pair_a, PN_GLOBAL const uint* pair_b, pn_dims t,
+                                    SatFractionalWindow w, int j, pn_upair* da, pn_upair* db)
+{
+    pn_upair a[4], b[4];
+    for (int c = 0; c < 4; c += 2)
+        pn_ugather_upair2_both(pair_a, pair_b, sat_corner_index(t, w.x[c], w.y[j]) * 2, a + c, b + c);
+    for (int i = 0; i < 3; ++i) {
+        da[i] = a[sat_interval_hi(i)] - a[sat_interval_lo(i)];
+        db[i] = b[sat_interval_hi(i)] - b[sat_interval_lo(i)];
+    }
+}
+
+/* One y interval's row of sat_fractional_weighted_rects: sum_i wx_i R_i with
+ * R_i = hi[i] - lo[i] joined (the rectangle's exact integer, as
+ * sat_fractional_weighted_pair forms it), in the same order. */
+PN_FN pn_double sat_fractional_weighted_row(pn_upair* hi, pn_upair* lo, SatFractionalWindow w)
+{
+    pn_double row = 0.0;
+    for (int i = 0; i < 3; ++i) row = row + pn_to_double(w.wx[i]) * pn_upair_join(hi[i] - lo[i]);
+    return row;
+}
+
+/* Values 0 and 1 of a 2-limb table over a fractional window, into sums[0]
+ * and sums[1]: sat_limb_fractional_sum's doubles (the same rectangles and
+ * operations in the same order), with both pair planes read at once and the
+ * rows read in the order the y intervals use them (left sliver rows 0, 1;
+ * body 0, 2; right 2, 3), so that at most two rows' differences are live
+ * (docs/moment_table.md, "Session 17"). */
+PN_FN void sat_limb_fractional_sums01(PN_GLOBAL const uint* table, pn_dims t, double unit, SatFractionalWindow w,
+                                      pn_double* sums)
+{
+    PN_GLOBAL const uint* pair_a = PN_PLANE(table, t, 0);
+    PN_GLOBAL const uint* pair_b = PN_PLANE(table, t, 2);
+    pn_upair a0[3], b0[3], a1[3], b1[3];
+    sat_fractional_row_pairs(pair_a, pair_b, t, w, 0, a0, b0);
+    sat_fractional_row_pairs(pair_a, pair_b, t, w, 1, a1, b1);
+    const pn_double left_a = sat_fractional_weighted_row(a1, a0, w), left_b = sat_fractional_weighted_row(b1, b0, w);
+    sat_fractional_row_pairs(pair_a, pair_b, t, w, 2, a1, b1);
+    const pn_double body_a = sat_fractional_weighted_row(a1, a0, w), body_b = sat_fractional_weighted_row(b1, b0, w);
+    sat_fractional_row_pairs(pair_a, pair_b, t, w, 3, a0, b0);
+    const pn_double right_a = sat_fractional_weighted_row(a0, a1, w), right_b = sat_fractional_weighted_row(b0, b1, w);
+    /* sat_fractional_weighted_rects' sum: body, right, left */
+    const pn_double wy0 = pn_to_double(w.wy[0]), wy1 = pn_to_double(w.wy[1]), wy2 = pn_to_double(w.wy[2]);
+    const double scale = unit * (1.0 / 65536.0);
+    sums[0] = (((pn_double)0.0 + wy0 * body_a) + wy1 * right_a + wy2 * left_a) * scale;
+    sums[1] = (((pn_double)0.0 + wy0 * body_b) + wy1 * right_b + wy2 * left_b) * scale;
+}
+
 /* Value k of a limb table over a fractional window (sat_limb_box_sum's units). */
 PN_FN pn_double sat_limb_fractional_sum(PN_GLOBAL const uint* table, pn_dims t, int limbs, int k, double unit,
                                         SatFractionalWindow w)

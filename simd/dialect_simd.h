@@ -23,6 +23,15 @@ using uint = std::uint32_t;
 
 inline constexpr int kLanes = int(pn_float::size);
 #define PN_LANES kLanes
+// A schedule choice (kernels/dialect.h): AVX2's 16 vector registers hold a
+// fractional window's rows read in interval order, both values at once, but
+// not its 16 corners per value; AVX-512's 32 do better with the corners
+// (docs/moment_table.md, "Session 17"). SSE4.2's pair reads are scalar loops.
+#if defined(PN_ISA_avx2)
+#define PN_FRACTIONAL_ROWS_IN_ORDER 1
+#else
+#define PN_FRACTIONAL_ROWS_IN_ORDER 0
+#endif
 
 PN_FN pn_float pn_min(pn_float a, pn_float b) { return xsimd::min(a, b); }
 PN_FN pn_float pn_max(pn_float a, pn_float b) { return xsimd::max(a, b); }
@@ -417,35 +426,62 @@ PN_FN void pn_ugather_upair_both(const uint* a, const uint* b, pn_int index, pn_
 // receivers alike (docs/moment_table.md, "Session 16"). The box corners'
 // single pairs stay gathers (loads there sped up VSM but slowed MSM and
 // EVSM4 by 15-25%), except two planes at once (pn_ugather_upair_both).
-PN_FN void pn_ugather_upair2(const uint* ptr, pn_int index, pn_upair* first, pn_upair* second)
+// `Planes` planes read at the same indices share one extraction of each
+// lane's index (pn_ugather_upair2_both).
+template <int Planes>
+PN_FN void upair2_of_planes(const uint* const (&planes)[Planes], pn_int index, pn_upair (&out)[Planes][2])
 {
 #if defined(PN_ISA_avx512) || defined(PN_ISA_avx2)
     alignas(64) std::int32_t lanes[kLanes];
     index.store_aligned(lanes);
-    const auto lane = [&](int i) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(ptr + lanes[i])); };
+    const auto lane = [&](int p, int i) {
+        return _mm_loadu_si128(reinterpret_cast<const __m128i*>(planes[p] + lanes[i]));
+    };
 #endif
     // Lanes i, i + 2, ... side by side, one 128-bit part each, and lanes
     // i + 1, i + 3, ... likewise: unpacking their low and high 64-bit halves
     // gives the lanes' first and second pairs in lane order.
+    for (int p = 0; p < Planes; ++p) {
 #if defined(PN_ISA_avx512)
-    const auto parts = [&](int i) {  // lanes i, i + 2, i + 4, i + 6
-        __m512i v = _mm512_castsi128_si512(lane(i));
-        v = _mm512_inserti64x2(v, lane(i + 2), 1);
-        v = _mm512_inserti64x2(v, lane(i + 4), 2);
-        return _mm512_inserti64x2(v, lane(i + 6), 3);
-    };
-    const __m512i e0 = parts(0), o0 = parts(1), e8 = parts(8), o8 = parts(9);
-    *first = {_mm512_unpacklo_epi64(e0, o0), _mm512_unpacklo_epi64(e8, o8)};
-    *second = {_mm512_unpackhi_epi64(e0, o0), _mm512_unpackhi_epi64(e8, o8)};
+        const auto parts = [&](int i) {  // lanes i, i + 2, i + 4, i + 6
+            __m512i v = _mm512_castsi128_si512(lane(p, i));
+            v = _mm512_inserti64x2(v, lane(p, i + 2), 1);
+            v = _mm512_inserti64x2(v, lane(p, i + 4), 2);
+            return _mm512_inserti64x2(v, lane(p, i + 6), 3);
+        };
+        const __m512i e0 = parts(0), o0 = parts(1), e8 = parts(8), o8 = parts(9);
+        out[p][0] = {_mm512_unpacklo_epi64(e0, o0), _mm512_unpacklo_epi64(e8, o8)};
+        out[p][1] = {_mm512_unpackhi_epi64(e0, o0), _mm512_unpackhi_epi64(e8, o8)};
 #elif defined(PN_ISA_avx2)
-    const auto parts = [&](int i) { return _mm256_inserti128_si256(_mm256_castsi128_si256(lane(i)), lane(i + 2), 1); };
-    const __m256i e0 = parts(0), o0 = parts(1), e4 = parts(4), o4 = parts(5);
-    *first = {_mm256_unpacklo_epi64(e0, o0), _mm256_unpacklo_epi64(e4, o4)};
-    *second = {_mm256_unpackhi_epi64(e0, o0), _mm256_unpackhi_epi64(e4, o4)};
+        const auto parts = [&](int i) {
+            return _mm256_inserti128_si256(_mm256_castsi128_si256(lane(p, i)), lane(p, i + 2), 1);
+        };
+        const __m256i e0 = parts(0), o0 = parts(1), e4 = parts(4), o4 = parts(5);
+        out[p][0] = {_mm256_unpacklo_epi64(e0, o0), _mm256_unpacklo_epi64(e4, o4)};
+        out[p][1] = {_mm256_unpackhi_epi64(e0, o0), _mm256_unpackhi_epi64(e4, o4)};
 #else
-    *first = pn_ugather_upair(ptr, index);
-    *second = pn_ugather_upair(ptr, index + 2);
+        out[p][0] = pn_ugather_upair(planes[p], index);
+        out[p][1] = pn_ugather_upair(planes[p], index + 2);
 #endif
+    }
+}
+PN_FN void pn_ugather_upair2(const uint* ptr, pn_int index, pn_upair* first, pn_upair* second)
+{
+    const uint* const planes[1] = {ptr};
+    pn_upair out[1][2];
+    upair2_of_planes(planes, index, out);
+    *first = out[0][0];
+    *second = out[0][1];
+}
+PN_FN void pn_ugather_upair2_both(const uint* a, const uint* b, pn_int index, pn_upair* from_a, pn_upair* from_b)
+{
+    const uint* const planes[2] = {a, b};
+    pn_upair out[2][2];
+    upair2_of_planes(planes, index, out);
+    for (int k = 0; k < 2; ++k) {
+        from_a[k] = out[0][k];
+        from_b[k] = out[1][k];
+    }
 }
 // first 2^16 + second in 64-bit lanes (below 2^49), then to double; before
 // AVX-512 by the exponent trick: OR-ing an integer below 2^52 under the
