@@ -36,6 +36,7 @@ typedef int pn_mask;
 #define PN_ENTRY(name) PN_ENTRY_PROBE(PN_ENTRY_IS_##name)
 #define PN_GLOBAL global
 #define PN_LANES 1
+#define PN_FRACTIONAL_ROWS_IN_ORDER 0 /* kernels/dialect.h; not measured on OpenCL */
 
 PN_FN float pn_min(float a, float b) { return a < b ? a : b; }
 PN_FN float pn_max(float a, float b) { return a > b ? a : b; }
@@ -127,12 +128,24 @@ PN_FN void pn_ugather_pair(global const uint* ptr, int index, uint* first, uint*
  * component. The join is exact (both products and the sum below 2^49). */
 typedef uint2 pn_upair;
 PN_FN pn_upair pn_ugather_upair(global const uint* ptr, int index) { return vload2(0, ptr + index); }
+PN_FN void pn_ugather_upair_both(global const uint* a, global const uint* b, int index, pn_upair* from_a,
+                                 pn_upair* from_b)
+{
+    *from_a = vload2(0, a + index);
+    *from_b = vload2(0, b + index);
+}
 /* One 16-byte load (vload4 needs only the element's alignment). */
 PN_FN void pn_ugather_upair2(global const uint* ptr, int index, pn_upair* first, pn_upair* second)
 {
     const uint4 v = vload4(0, ptr + index);
     *first = v.xy;
     *second = v.zw;
+}
+PN_FN void pn_ugather_upair2_both(global const uint* a, global const uint* b, int index,
+                                  pn_upair* from_a, pn_upair* from_b)
+{
+    pn_ugather_upair2(a, index, &from_a[0], &from_a[1]);
+    pn_ugather_upair2(b, index, &from_b[0], &from_b[1]);
 }
 PN_FN double pn_upair_join(pn_upair v) { return (double)v.x * 65536.0 + (double)v.y; }
 

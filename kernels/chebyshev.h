@@ -114,8 +114,10 @@ PN_FN DepthMoments box_moments_exact(PN_GLOBAL const uint* table, pn_dims t, int
 {
     const pn_double inverse_area = 1.0 / pn_int_to_double((x1 - x0) * (y1 - y0));  /* as direct_box_means */
     DepthMoments m;
-    m.mean = sat_limb_box_sum(table, t, limbs, 0, 1.0 / 65536.0, x0, x1, y0, y1) * inverse_area;
-    m.mean_sq = sat_limb_box_sum(table, t, limbs, 1, 1.0 / 65536.0, x0, x1, y0, y1) * inverse_area;
+    pn_double sums[2];
+    sat_limb_box_sums01(table, t, limbs, 1.0 / 65536.0, x0, x1, y0, y1, sums);
+    m.mean = sums[0] * inverse_area;
+    m.mean_sq = sums[1] * inverse_area;
     return m;
 }
 
@@ -157,8 +159,15 @@ PN_FN DepthMoments fractional_moments_exact(PN_GLOBAL const uint* table, pn_dims
     const SatFractionalWindow w = sat_fractional_window(t, f.x0, f.x1, f.y0, f.y1);
     const pn_double area = fractional_area(f);
     DepthMoments m;
-    m.mean = sat_limb_fractional_sum(table, t, limbs, 0, 1.0 / 65536.0, w) / area;
-    m.mean_sq = sat_limb_fractional_sum(table, t, limbs, 1, 1.0 / 65536.0, w) / area;
+    pn_double sums[2];  /* the same doubles on either path (the binding's schedule choice) */
+    if (PN_FRACTIONAL_ROWS_IN_ORDER && limbs == 2) {
+        sat_limb_fractional_sums01(table, t, 1.0 / 65536.0, w, sums);
+    } else {
+        sums[0] = sat_limb_fractional_sum(table, t, limbs, 0, 1.0 / 65536.0, w);
+        sums[1] = sat_limb_fractional_sum(table, t, limbs, 1, 1.0 / 65536.0, w);
+    }
+    m.mean = sums[0] / area;
+    m.mean_sq = sums[1] / area;
     return m;
 }
 

@@ -93,8 +93,18 @@
  *                                   (both in bounds); a - b wraps each part on its
  *                                   own; pn_upair_join(v) = first 2^16 + second as
  *                                   pn_double (exact: a limb pair's window sum)
+ *   pn_ugather_upair_both(a, b, index, &from_a, &from_b)  pn_ugather_upair of two
+ *                                   planes at the same indices (SIMD: per-lane loads,
+ *                                   each lane's index extracted once for both)
  *   pn_ugather_upair2(ptr, index, &first, &second)  the pairs at index and
  *                                   index + 2 (16 contiguous bytes, all in bounds)
+ *   pn_ugather_upair2_both(a, b, index, from_a, from_b)  pn_ugather_upair2 of two
+ *                                   planes at the same indices into from_a[0..1] and
+ *                                   from_b[0..1] (SIMD: each lane's index extracted once)
+ *   PN_FRACTIONAL_ROWS_IN_ORDER     a schedule choice, 0 or 1: VSSM's filter reads
+ *                                   its fractional window row by row, both values at
+ *                                   once (1), or 16 corners per value (0); the same
+ *                                   doubles either way (kernels/chebyshev.h)
  *   pn_ustore_pair_stream(plane, dims, x, y, first, second)  two strips
  *                                   interleaved: element 2 (y pitch + x + i) + 0 / + 1
  *                                   get lane i of first / second (lanes past the

@@ -325,6 +325,20 @@ PN_FN pn_upair sat_box_sum_pair(PN_GLOBAL const uint* pair, pn_dims t, pn_int x0
     return (d - c) - (b - a);
 }
 
+/* sat_box_sum_pair of two pair planes at once (values 0 and 1), each
+ * corner's index extracted once for both (pn_ugather_upair_both). */
+PN_FN void sat_box_sum_pairs(PN_GLOBAL const uint* pair_a, PN_GLOBAL const uint* pair_b, pn_dims t, pn_int x0,
+                             pn_int x1, pn_int y0, pn_int y1, pn_upair* sums)
+{
+    pn_upair a[4], b[4];
+    pn_ugather_upair_both(pair_a, pair_b, sat_corner_index(t, x0, y0) * 2, &a[0], &b[0]);
+    pn_ugather_upair_both(pair_a, pair_b, sat_corner_index(t, x1, y0) * 2, &a[1], &b[1]);
+    pn_ugather_upair_both(pair_a, pair_b, sat_corner_index(t, x0, y1) * 2, &a[2], &b[2]);
+    pn_ugather_upair_both(pair_a, pair_b, sat_corner_index(t, x1, y1) * 2, &a[3], &b[3]);
+    sums[0] = (a[3] - a[2]) - (a[1] - a[0]);
+    sums[1] = (b[3] - b[2]) - (b[1] - b[0]);
+}
+
 /* The value of one step of limb 0: 2^-16 in limb tables; a table of one
  * limb per value holds 16-bit steps v * 65535 instead (kernels/encoded_table.h,
  * the opt-in 16-bit storages). */
@@ -346,6 +360,22 @@ PN_FN pn_double sat_limb_box_sum(PN_GLOBAL const uint* table, pn_dims t, int lim
     if (limbs == 2) return total;
     const pn_uint s2 = sat_box_sum_exact(PN_PLANE(table, t, k * limbs + 2), t, x0, x1, y0, y1);
     return total + pn_uint_to_double(s2) * (unit * (1.0 / 4294967296.0));
+}
+
+/* Values 0 and 1 of a 2-limb table over the texels [x0, x1) x [y0, y1) into
+ * sums[0] and sums[1]: sat_limb_box_sum's doubles, both pair planes' corners
+ * read together (VSM, VSSM's search; docs/moment_table.md, "Session 17");
+ * other limb counts value by value. */
+PN_FN void sat_limb_box_sums01(PN_GLOBAL const uint* table, pn_dims t, int limbs, double unit, pn_int x0, pn_int x1,
+                               pn_int y0, pn_int y1, pn_double* sums)
+{
+    if (limbs != 2) {
+        for (int k = 0; k < 2; ++k) sums[k] = sat_limb_box_sum(table, t, limbs, k, unit, x0, x1, y0, y1);
+        return;
+    }
+    pn_upair pairs[2];
+    sat_box_sum_pairs(PN_PLANE(table, t, 0), PN_PLANE(table, t, 2), t, x0, x1, y0, y1, pairs);
+    for (int k = 0; k < 2; ++k) sums[k] = pn_upair_join(pairs[k]) * (unit * (1.0 / 65536.0));
 }
 
 /* A window with fractional edges, in exclusive-corner coordinates clipped to
@@ -474,6 +504,57 @@ PN_FN pn_double sat_fractional_weighted_pair(pn_upair s[4][4], SatFractionalWind
             rect[j][i] = pn_upair_join((s[yh][xh] - s[yh][xl]) - (s[yl][xh] - s[yl][xl]));
         }
     return sat_fractional_weighted_rects(rect, w);
+}
+
+/* Row j of a fractional window in the pair planes of values 0 and 1 (a and
+ * b): its three x intervals' wrapped differences s[hi(i)] - s[lo(i)], both
+ * planes' corners read at once (pn_ugather_upair2_both). */
+PN_FN void sat_fractional_row_pairs(PN_GLOBAL const uint* pair_a, PN_GLOBAL const uint* pair_b, pn_dims t,
+                                    SatFractionalWindow w, int j, pn_upair* da, pn_upair* db)
+{
+    pn_upair a[4], b[4];
+    for (int c = 0; c < 4; c += 2)
+        pn_ugather_upair2_both(pair_a, pair_b, sat_corner_index(t, w.x[c], w.y[j]) * 2, a + c, b + c);
+    for (int i = 0; i < 3; ++i) {
+        da[i] = a[sat_interval_hi(i)] - a[sat_interval_lo(i)];
+        db[i] = b[sat_interval_hi(i)] - b[sat_interval_lo(i)];
+    }
+}
+
+/* One y interval's row of sat_fractional_weighted_rects: sum_i wx_i R_i with
+ * R_i = hi[i] - lo[i] joined (the rectangle's exact integer, as
+ * sat_fractional_weighted_pair forms it), in the same order. */
+PN_FN pn_double sat_fractional_weighted_row(pn_upair* hi, pn_upair* lo, SatFractionalWindow w)
+{
+    pn_double row = 0.0;
+    for (int i = 0; i < 3; ++i) row = row + pn_to_double(w.wx[i]) * pn_upair_join(hi[i] - lo[i]);
+    return row;
+}
+
+/* Values 0 and 1 of a 2-limb table over a fractional window, into sums[0]
+ * and sums[1]: sat_limb_fractional_sum's doubles (the same rectangles and
+ * operations in the same order), with both pair planes read at once and the
+ * rows read in the order the y intervals use them (left sliver rows 0, 1;
+ * body 0, 2; right 2, 3), so that at most two rows' differences are live
+ * (docs/moment_table.md, "Session 17"). */
+PN_FN void sat_limb_fractional_sums01(PN_GLOBAL const uint* table, pn_dims t, double unit, SatFractionalWindow w,
+                                      pn_double* sums)
+{
+    PN_GLOBAL const uint* pair_a = PN_PLANE(table, t, 0);
+    PN_GLOBAL const uint* pair_b = PN_PLANE(table, t, 2);
+    pn_upair a0[3], b0[3], a1[3], b1[3];
+    sat_fractional_row_pairs(pair_a, pair_b, t, w, 0, a0, b0);
+    sat_fractional_row_pairs(pair_a, pair_b, t, w, 1, a1, b1);
+    const pn_double left_a = sat_fractional_weighted_row(a1, a0, w), left_b = sat_fractional_weighted_row(b1, b0, w);
+    sat_fractional_row_pairs(pair_a, pair_b, t, w, 2, a1, b1);
+    const pn_double body_a = sat_fractional_weighted_row(a1, a0, w), body_b = sat_fractional_weighted_row(b1, b0, w);
+    sat_fractional_row_pairs(pair_a, pair_b, t, w, 3, a0, b0);
+    const pn_double right_a = sat_fractional_weighted_row(a0, a1, w), right_b = sat_fractional_weighted_row(b0, b1, w);
+    /* sat_fractional_weighted_rects' sum: body, right, left */
+    const pn_double wy0 = pn_to_double(w.wy[0]), wy1 = pn_to_double(w.wy[1]), wy2 = pn_to_double(w.wy[2]);
+    const double scale = unit * (1.0 / 65536.0);
+    sums[0] = (((pn_double)0.0 + wy0 * body_a) + wy1 * right_a + wy2 * left_a) * scale;
+    sums[1] = (((pn_double)0.0 + wy0 * body_b) + wy1 * right_b + wy2 * left_b) * scale;
 }
 
 /* Value k of a limb table over a fractional window (sat_limb_box_sum's units). */

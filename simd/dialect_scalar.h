@@ -15,6 +15,9 @@ using uint = std::uint32_t;
 #define PN_KERNEL static inline
 #define PN_GLOBAL
 #define PN_LANES 1
+/* The readable oracle takes the row-order path (kernels/dialect.h), so that
+ * the backends' agreement tests compare it bit for bit with the corner path. */
+#define PN_FRACTIONAL_ROWS_IN_ORDER 1
 
 inline constexpr int kLanes = 1;
 
@@ -126,10 +129,22 @@ struct pn_upair {
 };
 PN_FN pn_upair operator-(pn_upair a, pn_upair b) { return {a.first - b.first, a.second - b.second}; }
 PN_FN pn_upair pn_ugather_upair(const std::uint32_t* ptr, std::int32_t index) { return {ptr[index], ptr[index + 1]}; }
+PN_FN void pn_ugather_upair_both(const std::uint32_t* a, const std::uint32_t* b, std::int32_t index, pn_upair* from_a,
+                                 pn_upair* from_b)
+{
+    *from_a = pn_ugather_upair(a, index);
+    *from_b = pn_ugather_upair(b, index);
+}
 PN_FN void pn_ugather_upair2(const std::uint32_t* ptr, std::int32_t index, pn_upair* first, pn_upair* second)
 {
     *first = pn_ugather_upair(ptr, index);
     *second = pn_ugather_upair(ptr, index + 2);
+}
+PN_FN void pn_ugather_upair2_both(const std::uint32_t* a, const std::uint32_t* b, std::int32_t index,
+                                  pn_upair* from_a, pn_upair* from_b)
+{
+    pn_ugather_upair2(a, index, &from_a[0], &from_a[1]);
+    pn_ugather_upair2(b, index, &from_b[0], &from_b[1]);
 }
 PN_FN double pn_upair_join(pn_upair v) { return double(v.first) * 65536.0 + double(v.second); }
 

@@ -23,6 +23,15 @@ using uint = std::uint32_t;
 
 inline constexpr int kLanes = int(pn_float::size);
 #define PN_LANES kLanes
+// A schedule choice (kernels/dialect.h): AVX2's 16 vector registers hold a
+// fractional window's rows read in interval order, both values at once, but
+// not its 16 corners per value; AVX-512's 32 do better with the corners
+// (docs/moment_table.md, "Session 17"). SSE4.2's pair reads are scalar loops.
+#if defined(PN_ISA_avx2)
+#define PN_FRACTIONAL_ROWS_IN_ORDER 1
+#else
+#define PN_FRACTIONAL_ROWS_IN_ORDER 0
+#endif
 
 PN_FN pn_float pn_min(pn_float a, pn_float b) { return xsimd::min(a, b); }
 PN_FN pn_float pn_max(pn_float a, pn_float b) { return xsimd::max(a, b); }
@@ -375,13 +384,48 @@ PN_FN pn_upair pn_ugather_upair(const uint* ptr, pn_int index)
     return {pn_uint::load_aligned(pairs), pn_uint::load_aligned(pairs + kLanes)};
 #endif
 }
+// pn_ugather_upair of two planes at the same indices (a box's corners of
+// values 0 and 1: VSM, VSSM's search): on AVX-512 and AVX2 one 64-bit load
+// per lane and plane, each lane's index extracted once for both, instead of
+// four 64-bit gathers (docs/moment_table.md, "Session 17").
+PN_FN void pn_ugather_upair_both(const uint* a, const uint* b, pn_int index, pn_upair* from_a, pn_upair* from_b)
+{
+#if defined(PN_ISA_avx512) || defined(PN_ISA_avx2)
+    alignas(64) std::int32_t lanes[kLanes];
+    index.store_aligned(lanes);
+    // Lanes i and i + 1 of one plane in one 128-bit part.
+    const auto two = [&](const uint* plane, int i) {
+        const __m128i low = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(plane + lanes[i]));
+        return _mm_castpd_si128(_mm_loadh_pd(_mm_castsi128_pd(low), reinterpret_cast<const double*>(plane + lanes[i + 1])));
+    };
+#endif
+#if defined(PN_ISA_avx512)
+    const auto half = [&](const uint* plane, int i) {  // lanes i .. i + 7
+        __m512i v = _mm512_castsi128_si512(two(plane, i));
+        v = _mm512_inserti64x2(v, two(plane, i + 2), 1);
+        v = _mm512_inserti64x2(v, two(plane, i + 4), 2);
+        return _mm512_inserti64x2(v, two(plane, i + 6), 3);
+    };
+    *from_a = {half(a, 0), half(a, 8)};
+    *from_b = {half(b, 0), half(b, 8)};
+#elif defined(PN_ISA_avx2)
+    const auto half = [&](const uint* plane, int i) {  // lanes i .. i + 3
+        return _mm256_inserti128_si256(_mm256_castsi128_si256(two(plane, i)), two(plane, i + 2), 1);
+    };
+    *from_a = {half(a, 0), half(a, 4)};
+    *from_b = {half(b, 0), half(b, 4)};
+#else
+    *from_a = pn_ugather_upair(a, index);
+    *from_b = pn_ugather_upair(b, index);
+#endif
+}
 // Two adjacent pairs per lane, ptr[index .. index + 3]: a fractional
 // window's corners a and a + 1 of one row, 16 contiguous bytes. On AVX-512
 // and AVX2 one 128-bit load per lane and a few inserts and unpacks instead
 // of four 64-bit gathers: faster on Zen 5 for coherent and incoherent
 // receivers alike (docs/moment_table.md, "Session 16"). The box corners'
-// single pairs stay gathers: loads there sped up VSM but slowed MSM and
-// EVSM4 by 15-25%.
+// single pairs stay gathers (loads there sped up VSM but slowed MSM and
+// EVSM4 by 15-25%), except two planes at once (pn_ugather_upair_both).
 PN_FN void pn_ugather_upair2(const uint* ptr, pn_int index, pn_upair* first, pn_upair* second)
 {
 #if defined(PN_ISA_avx512) || defined(PN_ISA_avx2)
@@ -410,6 +454,33 @@ PN_FN void pn_ugather_upair2(const uint* ptr, pn_int index, pn_upair* first, pn_
 #else
     *first = pn_ugather_upair(ptr, index);
     *second = pn_ugather_upair(ptr, index + 2);
+#endif
+}
+// pn_ugather_upair2 of two planes at the same indices (VSSM's filter rows
+// on AVX2, PN_FRACTIONAL_ROWS_IN_ORDER): each lane's index extracted once
+// for both planes' loads. pn_ugather_upair2 itself is left as it was: routed
+// through a shared template, MSM-soft's AVX2 code changed and measured 0.78x.
+PN_FN void pn_ugather_upair2_both(const uint* a, const uint* b, pn_int index, pn_upair* from_a, pn_upair* from_b)
+{
+#if defined(PN_ISA_avx2)
+    alignas(64) std::int32_t lanes[kLanes];
+    index.store_aligned(lanes);
+    const auto lane = [&](const uint* ptr, int i) {
+        return _mm_loadu_si128(reinterpret_cast<const __m128i*>(ptr + lanes[i]));
+    };
+    const auto parts = [&](const uint* ptr, int i) {
+        return _mm256_inserti128_si256(_mm256_castsi128_si256(lane(ptr, i)), lane(ptr, i + 2), 1);
+    };
+    const auto both_pairs = [&](const uint* ptr, pn_upair* out) {  // as pn_ugather_upair2
+        const __m256i e0 = parts(ptr, 0), o0 = parts(ptr, 1), e4 = parts(ptr, 4), o4 = parts(ptr, 5);
+        out[0] = {_mm256_unpacklo_epi64(e0, o0), _mm256_unpacklo_epi64(e4, o4)};
+        out[1] = {_mm256_unpackhi_epi64(e0, o0), _mm256_unpackhi_epi64(e4, o4)};
+    };
+    both_pairs(a, from_a);
+    both_pairs(b, from_b);
+#else
+    pn_ugather_upair2(a, index, &from_a[0], &from_a[1]);
+    pn_ugather_upair2(b, index, &from_b[0], &from_b[1]);
 #endif
 }
 // first 2^16 + second in 64-bit lanes (below 2^49), then to double; before
