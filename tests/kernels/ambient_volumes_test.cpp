@@ -63,7 +63,9 @@ void expect_factor(Context& ctx, const std::vector<AmbientVolume>& volumes, cons
             between += e > 0.0 && e < 1.0;
         }
     const bool plateau = std::any_of(volumes.begin(), volumes.end(), [](const AmbientVolume& v) { return v.falloff_delay > 0; });
-    if (plateau) EXPECT_GT(inside, 0) << "a delayed falloff keeps f = 1 out to the delay";
+    if (plateau) {
+        EXPECT_GT(inside, 0) << "a delayed falloff keeps f = 1 out to the delay";
+    }
     EXPECT_GT(outside, 0);
     EXPECT_GT(between, 0) << "the falloff must be crossed";
 }
