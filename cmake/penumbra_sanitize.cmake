@@ -1,8 +1,9 @@
 # Sanitizer builds (docs/ci.md). One interface target, penumbra_sanitize, holds
 # the flags; link_libraries() hands it to every target defined after this file
 # is included -- the library, each per-ISA object library, the CLI, the tests,
-# the benchmarks and the fuzz targets -- because ASan and UBSan are only sound
-# when every translation unit and every link carries them.
+# the benchmarks and the fuzz targets -- because every link must carry the
+# runtime, and code compiled without the checks is code nobody checks. The one
+# exception is chosen per target (PENUMBRA_UNINSTRUMENTED, below).
 #
 #   -DPENUMBRA_SANITIZE=address,undefined   gcc or clang; the CI's sanitizer job
 #   -DPENUMBRA_FUZZ=ON                      clang; adds fuzzer-no-link (coverage
@@ -24,8 +25,13 @@ if(PENUMBRA_SANITIZE)
   if(PENUMBRA_FUZZ)
     string(APPEND _penumbra_compile_sanitizers ",fuzzer-no-link")
   endif()
-  target_compile_options(penumbra_sanitize INTERFACE -fsanitize=${_penumbra_compile_sanitizers}
-                         -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  # A target with PENUMBRA_UNINSTRUMENTED set (the test sources: drivers of the
+  # instrumented code, like Debian's uninstrumented GoogleTest beside them) compiles
+  # without the checks and still links the runtime (docs/ci.md, cut 12).
+  set(_penumbra_instrumented "$<NOT:$<BOOL:$<TARGET_PROPERTY:PENUMBRA_UNINSTRUMENTED>>>")
+  target_compile_options(penumbra_sanitize INTERFACE
+                         "$<${_penumbra_instrumented}:-fsanitize=${_penumbra_compile_sanitizers};-fno-sanitize-recover=all>"
+                         -fno-omit-frame-pointer)
   target_link_options(penumbra_sanitize INTERFACE -fsanitize=${PENUMBRA_SANITIZE})
   # BUILD_INTERFACE: the installed package does not name this build-only
   # target; the install test's consumer, which links the instrumented library

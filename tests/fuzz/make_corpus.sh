@@ -2,7 +2,7 @@
 # Generates the fuzzers' seed corpus (docs/ci.md, "Fuzzing"); nothing of it is
 # committed. From a build with -DPENUMBRA_FUZZ=ON:
 #
-#   tests/fuzz/make_corpus.sh BUILD_DIR OUT_DIR
+#   tests/fuzz/make_corpus.sh BUILD_DIR OUT_DIR [PENUMBRA_CLI]
 #
 # OUT_DIR/exr    exr_seeds: every compression, scanline and tiled, FLOAT/HALF/UINT
 # OUT_DIR/deep   deep_exr_seeds: deep maps as penumbra writes them and as others might
@@ -15,6 +15,7 @@
 set -euo pipefail
 build=${1:?usage: make_corpus.sh BUILD_DIR OUT_DIR}
 out=${2:?usage: make_corpus.sh BUILD_DIR OUT_DIR}
+cli=${3:-$build/penumbra} # the CLI that bakes the grid seeds: any build's
 mkdir -p "$out/exr" "$out/deep" "$out/scene" "$out/grid" "$out/ambient"
 "$build/tests/fuzz/exr_seeds" "$out/exr"
 "$build/tests/fuzz/deep_exr_seeds" "$out/deep"
@@ -36,7 +37,7 @@ JSON
 for scene in "$out"/scene/*.json; do
   name=$(basename "$scene" .json)
   for voxel in 32 16 8 4 2 1 0.5; do
-    "$build/penumbra" sdf-bake --scene "$scene" --out "$out/grid/try.pnsdf" --voxel "$voxel" >/dev/null
+    "$cli" sdf-bake --scene "$scene" --out "$out/grid/try.pnsdf" --voxel "$voxel" >/dev/null
     (($(stat -c %s "$out/grid/try.pnsdf") < 65536)) || break
     mv "$out/grid/try.pnsdf" "$out/grid/$name.pnsdf"
   done
