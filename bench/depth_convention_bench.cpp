@@ -1,7 +1,10 @@
 // What each depth convention costs against normalised depth
 // (kernels/depth_convention.h: the conversion in the kernels' load), on
 // penumbra_bench's inputs (bench_inputs.h) rewritten in each convention
-// (near 0.5, far 50), on the best CPU backend, one thread:
+// (near 0.5, far 50), on the best CPU backend, one thread
+// (`depth_convention/...`), and on OpenCL (`depth_convention_opencl/...`: the
+// same calls on Context("opencl"), PoCL's own threads, each call's transfers
+// of the host images included, the same for every convention):
 //
 //   table        the exact VSM table's build (one conversion per texel)
 //   table_float  the float VSM table's build (one per texel)
@@ -136,12 +139,12 @@ const Case kCases[] = {{"table", table_step},           {"table_float", table_fl
                        {"evsm_direct", evsm_direct_step}, {"pcf", pcf_step},
                        {"pcss", pcss_step},               {"burley", burley_step}};
 
-void run(benchmark::State& state, const Case& c, DepthConventionKind kind)
+void run(benchmark::State& state, bool opencl, const Case& c, DepthConventionKind kind)
 {
     tbb::task_arena arena(1);
     arena.execute([&] {
         try {
-            Context& ctx = context(best_cpu_backend());
+            Context& ctx = context(opencl ? std::string("opencl") : best_cpu_backend());
             state.SetLabel(ctx.description());
             Inputs& in = inputs(kind);
             const DepthConvention convention = testing::convention_of(kind);
@@ -161,14 +164,15 @@ void run(benchmark::State& state, const Case& c, DepthConventionKind kind)
 }
 
 [[maybe_unused]] const bool registered = [] {
-    for (const Case& c : kCases)
-        for (DepthConventionKind kind : testing::kAllConventions) {
-            const std::string name = std::string("depth_convention/") + c.name + "/convention:" + to_string(kind) +
-                                     "/size:" + std::to_string(kSize);
-            benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) { run(s, c, kind); })
-                ->UseRealTime()
-                ->Unit(benchmark::kMillisecond);
-        }
+    for (const bool opencl : {false, true})
+        for (const Case& c : kCases)
+            for (DepthConventionKind kind : testing::kAllConventions) {
+                const std::string name = std::string(opencl ? "depth_convention_opencl/" : "depth_convention/") +
+                                         c.name + "/convention:" + to_string(kind) + "/size:" + std::to_string(kSize);
+                benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) { run(s, opencl, c, kind); })
+                    ->UseRealTime()
+                    ->Unit(benchmark::kMillisecond);
+            }
     return true;
 }();
 
