@@ -11,8 +11,8 @@ build=build-fuzz
 seconds=${FUZZ_SECONDS:-12}
 # The readers need no OpenCL, no SIMD kernels (scalar only: the three SIMD
 # kernel objects were most of this build), no tests or benchmarks.
-# -g1: line tables are all a crash report's stack needs; -O1: the fixed number
-# of runs below costs less than the -O2 build did (as in the sanitizer job).
+# -g1: line tables are all a crash report's stack needs; -O1: a shorter build,
+# and the fixed number of runs below took about as long (as in the sanitizer job).
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DPENUMBRA_FUZZ=ON \

@@ -14,9 +14,10 @@ build=build-asan
 # of CI. -O1: the host code (the library's, the CLI's, the references') at -O1
 # compiles in 0.55-0.7x the time of -O2 under the checks; the kernels and the
 # tests' float64 references, where the suite's time goes, stay at -O2 (their
-# CMake files), and the test sources are at -O0 without the checks (cut 12). Two CPU ISAs, the scalar oracle and the widest this machine runs
-# (avx512 where it has it, else avx2, else sse4.2): every test runs once per
-# ISA, so all four made this stage most of CI's 30 minutes, and an ISA the
+# CMake files), and the test sources are at -O0 without the checks (cut 12).
+# Two CPU ISAs, the scalar oracle and the widest this machine runs (avx512
+# where it has it, else avx2, else sse4.2): every test runs once per ISA, so
+# all four made this stage most of CI's 30 minutes, and an ISA the
 # machine cannot run would be compiled under ASan and never tested. The other
 # ISAs compile the same descriptions with other lane counts; the main job
 # tests their results on every kernel (docs/ci.md).
