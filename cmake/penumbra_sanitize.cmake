@@ -25,9 +25,10 @@ if(PENUMBRA_SANITIZE)
   if(PENUMBRA_FUZZ)
     string(APPEND _penumbra_compile_sanitizers ",fuzzer-no-link")
   endif()
-  # A target with PENUMBRA_UNINSTRUMENTED set (the test sources: drivers of the
-  # instrumented code, like Debian's uninstrumented GoogleTest beside them) compiles
-  # without the checks and still links the runtime (docs/ci.md, cut 12).
+  # A target with PENUMBRA_UNINSTRUMENTED set (the test sources and their float64
+  # references in tests/support: drivers of the instrumented code, like Debian's
+  # uninstrumented GoogleTest beside them) compiles without the checks and still
+  # links the runtime (docs/ci.md, cut 12).
   set(_penumbra_instrumented "$<NOT:$<BOOL:$<TARGET_PROPERTY:PENUMBRA_UNINSTRUMENTED>>>")
   target_compile_options(penumbra_sanitize INTERFACE
                          "$<${_penumbra_instrumented}:-fsanitize=${_penumbra_compile_sanitizers};-fno-sanitize-recover=all>"
