@@ -3,7 +3,8 @@
 // RMSE against the truth of Pismo and of the averaged hard shadows split by
 // receiver class, and every hard shadow-map decision (receiver P, map j)
 // against the exact segment from P to the map's vertex V_j, traced as the
-// truth traces it (from P lifted by kNormalOffset along its normal). A wrong
+// truth traces it (blocked below P's tangent plane, P's own surface left out
+// otherwise; penumbra/reference/ground_truth.h). A wrong
 // decision is acne (the map occludes, the segment is clear) or a leak (the
 // reverse); each is split by what the map holds at P's pixel.
 // Then each class's error split by its source (docs/pismo.md, "Where fence's
@@ -206,10 +207,12 @@ void report(const reference::Scene& scene, int level, int size, double bias_texe
             t.pismo_sq += ep * ep;
             t.averaged_sq += ea * ea;
             total_sq += ep * ep;
-            const Vec3 origin = p + n * (reference::kNormalOffset * (1 + max_abs_component(p)));
+            const int own = int(rx.surface.at(0, x, y));  // the scenes' surfaces are opaque: the truth's rule
+            const Vec3 origin = own >= 0 ? p : p + n * (reference::kNormalOffset * (1 + max_abs_component(p)));
             for (std::size_t j = 0; j < maps.maps.size(); ++j) {
                 const Vec3 vertex = maps.mesh.vertices[j];
-                const bool blocked = prepared.transmittance({origin, vertex - origin}, 0.0, 1.0) < 0.5;
+                const bool below = own >= 0 && dot(vertex - p, n) <= 0;
+                const bool blocked = below || prepared.transmittance({origin, vertex - origin}, 0.0, 1.0, own) < 0.5;
                 ++t.tests;
                 if (const int cause = wrong_decision(maps.maps[j], maps.surface_ids[j], p, normals ? n : Vec3{},
                                                      int(rx.surface.at(0, x, y)), po, blocked);

@@ -9,18 +9,20 @@
 
 namespace penumbra::reference {
 
-double PreparedScene::transmittance(const Ray& ray, double t_min, double t_max) const
+double PreparedScene::transmittance(const Ray& ray, double t_min, double t_max, int skip) const
 {
     // The product is order-free; an opaque crossing ends it at exactly 0.
     double surviving = 1;
     traverse(ray, t_min, t_max, [&](const Solid& solid) {
-        const bool crosses = std::visit(
-            [&](const auto& shape) { return intersect(ray, shape, t_min, t_max).has_value(); }, solid.shape);
+        const bool crosses = solid.index != skip && std::visit([&](const auto& shape) {
+            return intersect(ray, shape, t_min, t_max).has_value();
+        }, solid.shape);
         if (crosses) surviving *= 1 - solid.opacity;
         return surviving == 0;
     });
     for (const FlatSurface& flat : planes_)
-        if (surviving > 0 && intersect(ray, flat.plane, t_min, t_max)) surviving *= 1 - flat.plane.opacity;
+        if (surviving > 0 && flat.index != skip && intersect(ray, flat.plane, t_min, t_max))
+            surviving *= 1 - flat.plane.opacity;
     if (surviving == 0 || media_.empty()) return surviving;
     return surviving * std::exp(-optical_depth(ray, t_min, t_max));
 }

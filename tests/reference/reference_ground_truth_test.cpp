@@ -1,7 +1,9 @@
 // Ground truth: closed-form cases, convergence, determinism.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "penumbra/error.h"
 #include "penumbra/reference/ground_truth.h"
@@ -80,6 +82,53 @@ TEST(ReferenceGroundTruth, SphereOnTheAxisOfADiskLight)
     // square ring max(|x|, |y|) = rho, which crosses 4 rho n strata: a standard
     // error of about sqrt(4 rho n / 4) / n^2 = 5e-4 here; the bound is 4 of those.
     EXPECT_NEAR(truth.at(0, 0, 0), expected, 2e-3);
+}
+
+TEST(ReferenceGroundTruth, TheReceiversOwnSurfaceIsExactAtASpheresTerminator)
+{
+    // Points on a small sphere (radius r = 0.01, centre at height 1) whose
+    // tangent plane cuts the 1 m square light at height H = 4: nothing else
+    // blocks, so the light reaching P is the part of the light above P's
+    // tangent plane, the light's x beyond x0 = P.x - (H - P.y) tan(a) for the
+    // normal n = (cos a, sin a, 0): V = clamp(1/2 - x0, 0, 1), a ramp across
+    // the light's x as the half-plane ramp above. With the receiver's surface
+    // named (ground_truth.h) the truth meets it to the strata's 1/n; lifted
+    // by kNormalOffset instead, rays up to sqrt(2 h / r) = 0.02 rad below the
+    // tangent plane pass beside the sphere and light about 6% more of it.
+    const double H = 4, r = 0.01;
+    const Vec3 centre{0, 1, 0};
+    const Scene scene = overhead(H, 1, {Sphere{centre, r}});
+    std::vector<double> angles;
+    for (int i = 0; i <= 24; ++i) angles.push_back((-6.0 + 0.5 * i) * std::acos(-1.0) / 180);
+    Receivers named = Receivers::allocate(int(angles.size()), 1);
+    for (int i = 0; i < int(angles.size()); ++i) {
+        const Vec3 n{std::cos(angles[std::size_t(i)]), std::sin(angles[std::size_t(i)]), 0};
+        for (int c = 0; c < 3; ++c) {
+            named.world_position.at(c, i, 0) = float((c == 0 ? centre.x : c == 1 ? centre.y : centre.z) +
+                                                     r * (c == 0 ? n.x : c == 1 ? n.y : n.z));
+            named.normal.at(c, i, 0) = float(c == 0 ? n.x : c == 1 ? n.y : n.z);
+        }
+        named.hit.at(0, i, 0) = named.mask.at(0, i, 0) = 1;
+        named.surface.at(0, i, 0) = 0;  // scene_surfaces: the sphere, then the ground
+    }
+    Receivers lifted = named, foreign = named;
+    lifted.surface.fill(0, -1.0f);
+    foreign.surface.fill(0, 7.0f);  // no such surface: the lift, as without an id
+    const int n = 64;
+    const Image exact = ground_truth(scene, named, {n}), lift = ground_truth(scene, lifted, {n});
+    const Image unknown = ground_truth(scene, foreign, {n});
+    double exact_sum = 0, lift_sum = 0;
+    for (int i = 0; i < int(angles.size()); ++i) {
+        const double a = angles[std::size_t(i)];
+        const double x0 = r * std::cos(a) - (H - (centre.y + r * std::sin(a))) * std::tan(a);
+        const double expected = std::clamp(0.5 - x0, 0.0, 1.0);
+        EXPECT_LE(std::fabs(exact.at(0, i, 0) - expected), 1.0 / n) << "angle " << a;
+        EXPECT_EQ(unknown.at(0, i, 0), lift.at(0, i, 0)) << "angle " << a;
+        exact_sum += exact.at(0, i, 0) - expected;
+        lift_sum += lift.at(0, i, 0) - expected;
+    }
+    EXPECT_LT(std::fabs(exact_sum) / double(angles.size()), 2e-3);
+    EXPECT_GT(lift_sum / double(angles.size()), 0.03);  // what the lift gets wrong, and this test would catch
 }
 
 // n x n strata against round(n sqrt 2)^2 (2.0x the samples, another seed) on

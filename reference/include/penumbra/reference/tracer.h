@@ -122,8 +122,10 @@ public:
     // The fraction of light that crosses the open segment (t_min, t_max):
     // the product of 1 - opacity over the surfaces crossing it (each once)
     // times exp(-optical_depth). Exactly 0 or 1 in a scene of opaque surfaces
-    // and no media.
-    double transmittance(const Ray& ray, double t_min, double t_max) const;
+    // and no media. `skip`: the index of a surface left out (the receiver's
+    // own convex solid, which no ray leaving it above its tangent plane
+    // crosses; ground_truth.h), -1 for none.
+    double transmittance(const Ray& ray, double t_min, double t_max, int skip = -1) const;
     // The events in (t_min, t_max) in increasing t: each surface's first
     // crossing, each medium's entry and exit (clipped to the segment: a
     // segment that starts inside a medium enters it at t_min). They end at
