@@ -4,8 +4,13 @@
 // and its throughput in receiver-samples (shadow rays) per second of wall
 // clock and of process CPU time. The shadow-map render time is a benchmark:
 // penumbra_bench --benchmark_filter=reference_shadow_map (bench/reference_bench.cpp).
+// Then what the receiver's own surface changes (docs/reference.md, "Ground
+// truth"): per scene, the truth with the receivers' surface ids against the
+// same truth with the ids removed (the normal lift), 32^2 rays, one seed.
 // usage: ground_truth_figures [width height]   (default 160 120, the doc's)
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -72,6 +77,34 @@ void print_table(int width, int height)
     }
 }
 
+// The truth with Receivers::surface against the lift (the ids set to -1):
+// the receivers that change, and by how much (new - old).
+void print_own_surface_table(int width, int height)
+{
+    std::printf("\nthe receiver's own surface against the normal lift, 32^2 rays, %dx%d receivers\n", width, height);
+    std::printf("%-8s %9s %8s %10s %10s %9s\n", "scene", "receivers", "changed", "RMSE", "mean", "worst");
+    for (const std::string& name : builtin_scene_names()) {
+        const Scene scene = builtin_scene(name);
+        const Receivers receivers = render_receivers(scene, width, height);
+        Receivers lifted = receivers;
+        lifted.surface.fill(0, -1.0f);
+        const Image own = ground_truth(scene, receivers, {32}), lift = ground_truth(scene, lifted, {32});
+        int changed = 0;
+        double sum = 0, worst = 0;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                if (receivers.mask.at(0, x, y) == 0) continue;
+                const double d = double(own.at(0, x, y)) - double(lift.at(0, x, y));
+                changed += d != 0;
+                sum += d;
+                worst = std::max(worst, std::fabs(d));
+            }
+        const double receivers_count = count(receivers.mask);
+        std::printf("%-8s %9.0f %8d %10.5f %+10.5f %9.4f\n", name.c_str(), receivers_count, changed,
+                    reference::rmse(own, lift, &receivers.mask), sum / std::max(receivers_count, 1.0), worst);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -82,5 +115,6 @@ int main(int argc, char** argv)
         return 2;
     }
     print_table(width, height);
+    print_own_surface_table(width, height);
     return 0;
 }
