@@ -192,6 +192,7 @@ void report(const reference::Scene& scene, int level, int size, double bias_texe
     po.skip_own_layers = skip_own;
     const testing::PismoEstimates e = testing::pismo_estimates(maps, rx, po, normals);
     const reference::PreparedScene prepared(scene);
+    const std::vector<bool> opaque = reference::opaque_surfaces(scene);
     std::array<Tally, 4> tally{};
     Image classes(rx.width(), rx.height(), 1);
     double total_sq = 0;
@@ -207,12 +208,10 @@ void report(const reference::Scene& scene, int level, int size, double bias_texe
             t.pismo_sq += ep * ep;
             t.averaged_sq += ea * ea;
             total_sq += ep * ep;
-            const int own = int(rx.surface.at(0, x, y));  // the scenes' surfaces are opaque: the truth's rule
-            const Vec3 origin = own >= 0 ? p : p + n * (reference::kNormalOffset * (1 + max_abs_component(p)));
+            const reference::ReceiverRays rays(p, n, reference::receiver_own_surface(rx, opaque, x, y));
             for (std::size_t j = 0; j < maps.maps.size(); ++j) {
                 const Vec3 vertex = maps.mesh.vertices[j];
-                const bool below = own >= 0 && dot(vertex - p, n) <= 0;
-                const bool blocked = below || prepared.transmittance({origin, vertex - origin}, 0.0, 1.0, own) < 0.5;
+                const bool blocked = rays.transmittance(prepared, vertex - rays.origin, 1.0) < 0.5;
                 ++t.tests;
                 if (const int cause = wrong_decision(maps.maps[j], maps.surface_ids[j], p, normals ? n : Vec3{},
                                                      int(rx.surface.at(0, x, y)), po, blocked);

@@ -199,6 +199,7 @@ Image directional_truth(const Scene& scene, int light, const Receivers& r)
     validate_scene(scene, "directional_truth");
     const Vec3 towards = normalize(directional_light(scene, light, "directional_truth").direction) * -1.0;
     const PreparedScene prepared(scene);
+    const std::vector<bool> opaque = opaque_surfaces(scene);
     Image truth(r.width(), r.height(), 1);
     tbb::parallel_for(tbb::blocked_range<int>(0, r.height()), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y != rows.end(); ++y)
@@ -209,8 +210,8 @@ Image directional_truth(const Scene& scene, int light, const Receivers& r)
                 }
                 const Vec3 p{r.world_position.at(0, x, y), r.world_position.at(1, x, y), r.world_position.at(2, x, y)};
                 const Vec3 n{r.normal.at(0, x, y), r.normal.at(1, x, y), r.normal.at(2, x, y)};
-                const Vec3 origin = p + n * (kNormalOffset * (1 + max_abs_component(p)));
-                truth.at(0, x, y) = float(prepared.transmittance(Ray{origin, towards}, 0, 1e9));
+                const ReceiverRays rays(p, n, receiver_own_surface(r, opaque, x, y));
+                truth.at(0, x, y) = float(rays.transmittance(prepared, towards, 1e9));
             }
     });
     return truth;

@@ -1,5 +1,4 @@
 // The ground-truth image: light_visibility for every receiver, rows in parallel.
-#include <cmath>
 #include <string>
 #include <vector>
 #include <tbb/blocked_range.h>
@@ -27,18 +26,6 @@ void require_receivers(const Receivers& r)
             "receivers must hold a 3-channel world_position and normal and a 1-channel hit image of one size");
 }
 
-// The opaque surface a receiver lies on, or -1 (ground_truth.h): its id in
-// Receivers::surface when the image has the channel and the id names a
-// surface of the scene whose opacity is 1.
-int own_surface(const Receivers& r, const std::vector<bool>& opaque, int x, int y)
-{
-    if (r.surface.width() != r.hit.width() || r.surface.height() != r.hit.height() || r.surface.channels() != 1)
-        return -1;
-    const float id = r.surface.at(0, x, y);
-    if (!(id >= 0 && id < float(opaque.size())) || id != std::floor(id)) return -1;
-    return opaque[std::size_t(id)] ? int(id) : -1;
-}
-
 // A stream name per (seed, pixel). light_visibility hashes it before use, so
 // neighbouring names give unrelated sample sequences.
 std::uint64_t pixel_stream(std::uint64_t seed, int x, int y, int width)
@@ -56,8 +43,7 @@ Image ground_truth(const Scene& scene, const Receivers& receivers, const GroundT
     validate_scene(scene, "ground_truth");
     require_receivers(receivers);
     const PreparedScene prepared(scene);
-    std::vector<bool> opaque;
-    for (const Primitive& surface : scene_surfaces(scene)) opaque.push_back(opacity_of(surface) == 1);
+    const std::vector<bool> opaque = opaque_surfaces(scene);
     const int width = receivers.hit.width(), height = receivers.hit.height();
     Image truth(width, height, 1);
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
@@ -70,7 +56,7 @@ Image ground_truth(const Scene& scene, const Receivers& receivers, const GroundT
                 const double visible = light_visibility(
                     prepared, scene.light, load3(receivers.world_position, x, y),
                     load3(receivers.normal, x, y), options.strata, pixel_stream(options.seed, x, y, width),
-                    own_surface(receivers, opaque, x, y));
+                    receiver_own_surface(receivers, opaque, x, y));
                 truth.at(0, x, y) = float(visible);
             }
     });

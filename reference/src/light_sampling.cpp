@@ -28,14 +28,9 @@ double light_visibility(const PreparedScene& prepared, const AreaLight& light, V
 {
     const Basis frame = basis_looking_along(light.normal, light.up);
     if (dot(position - light.center, frame.n) <= 0) return 0;
-    const bool own = own_surface >= 0;  // ground_truth.h: the receiver's own surface
-    const Vec3 origin = own ? position : position + normal * (kNormalOffset * (1 + max_abs_component(position)));
+    const ReceiverRays rays(position, normal, own_surface);
     // Direction to the light point unnormalised: t in (0, 1) spans the segment.
-    auto towards = [&](Vec3 target) {
-        const Vec3 direction = target - origin;
-        if (own && dot(direction, normal) <= 0) return 0.0;  // into the solid the point lies on
-        return prepared.transmittance({origin, direction}, 0.0, 1.0, own_surface);
-    };
+    auto towards = [&](Vec3 target) { return rays.transmittance(prepared, target - rays.origin, 1.0); };
     if (light.shape == LightShape::Point) return towards(light.center);  // exact: one segment
     // Hash the stream name into the starting state: SplitMix64 walks its state
     // in steps of a fixed constant, so two raw names a multiple of that step

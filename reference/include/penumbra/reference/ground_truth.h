@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "penumbra/image.h"
 #include "penumbra/reference/render.h"
@@ -54,6 +55,25 @@ inline constexpr double kNormalOffset = 1e-6;
 // frustum (the mask is for the shadow-map methods, which cannot see outside it).
 // Throws Error(InvalidArgument) for strata outside [1, 4096].
 Image ground_truth(const Scene& scene, const Receivers& receivers, const GroundTruthOptions& options = {});
+
+// A receiver's shadow rays by the rule above (reference/src/receiver_rays.cpp):
+// from `origin` (the point, or the point lifted when own_surface is -1).
+struct ReceiverRays {
+    ReceiverRays(Vec3 position, Vec3 normal, int own_surface);
+    // The transmittance of origin + t direction for t in (0, t_max); 0 for a
+    // direction below the tangent plane of the receiver's own surface.
+    double transmittance(const PreparedScene& prepared, Vec3 direction, double t_max) const;
+    Vec3 origin, normal;
+    int own_surface;
+};
+
+// Per index of scene_surfaces(scene): whether that surface is opaque.
+std::vector<bool> opaque_surfaces(const Scene& scene);
+
+// The opaque surface receiver (x, y) lies on, or -1: its id in
+// Receivers::surface when the image has the channel and the id names one of
+// `opaque` (opaque_surfaces) that is.
+int receiver_own_surface(const Receivers& receivers, const std::vector<bool>& opaque, int x, int y);
 
 // The light arriving at one receiver point; `stream` seeds its samples (an
 // area light's; a point light ignores strata and stream). 0 for a point
