@@ -189,11 +189,20 @@ ctest --test-dir "$build" --output-on-failure --repeat until-pass:2 -R '^CApi$' 
 # pass runs the runtime's and the cache's tests and the ones that launch
 # every kernel (every method, every lookup entry, the blur, the fields), not
 # every OpenCL test. The cache is warm by now.
-precise_tests='OpenClRuntime.*:OpenClCacheRepair.*:*UninitializedOutput.EveryMethodWritesEveryPixel/opencl'
+precise_tests='*UninitializedOutput.EveryMethodWritesEveryPixel/opencl'
 precise_tests+=':*ReceiverLookup.EveryLookupShapedEntryAgreesWithTheScalarOracle/opencl'
 precise_tests+=':*BilateralTest.OddSizesAndLaneEdgeWidths/opencl:*SdfTest.OddSizesMatchPixelByPixel/opencl'
 run_tests precise-opencl ":fast_unwind_on_malloc=0" "suppressions=$supp/lsan_precise.supp:print_suppressions=0" \
   "$build/tests/penumbra_tests" --gtest_filter="$precise_tests" || status=1
+# The runtime's and the cache's own tests (tiny programs built from source,
+# broken caches repaired) in a process of their own, under ASan and UBSan but
+# without the leak check at exit: in fresh Debian 12 roots on 2026-12-05
+# LSan's tracer crashed at that process's exit in 4 of 4 tries, with or
+# without a warm cache (and not on the development host, nor the other
+# tests' process above, which builds, caches, loads and launches every kernel
+# and so checks the same OpenCL objects of ours for leaks).
+run_tests opencl-runtime ":fast_unwind_on_malloc=0:detect_leaks=0" "" \
+  "$build/tests/penumbra_tests" --gtest_filter='OpenClRuntime.*:OpenClCacheRepair.*' || status=1
 echo "sanitizer job: precise pass done at $SECONDS s"
 bash tests/sanitize/cli_bad_input.sh "$build/penumbra" || status=1
 echo "sanitizer job: CLI runs done at $SECONDS s"
