@@ -114,8 +114,8 @@ excluded+=':OpenClPrograms.EveryKernelIdGetsAProgramHoldingItAlone:*Pismo.Shifte
 # at exit) sometimes crashes by itself while PoCL's threads exit ("Tracer
 # caught signal 11 ... LeakSanitizer has encountered a fatal error", seen once
 # in 400 processes, and at the end of the precise pass below in fresh-root
-# runs: twice in a row there once, on a machine busy with other builds, which
-# failed the job). Such a log holds no finding, but that process's leak check
+# runs; in every try for the runtime's own tests there, which now run without
+# the leak check). Such a log holds no finding, but that process's leak check
 # was not done: run_tests runs the process again, up to four times in all.
 # Any log with a finding counts, whatever else it holds.
 tracer_crash_only() {
@@ -186,9 +186,9 @@ ctest --test-dir "$build" --output-on-failure --repeat until-pass:2 -R '^CApi$' 
 # of an OpenCL object of ours, which lsan.supp's by-library entries would
 # hide, shows here. Our OpenCL objects are made in a few places (the runtime,
 # the program cache, the launch and buffer code every kernel shares), so the
-# pass runs the runtime's and the cache's tests and the ones that launch
-# every kernel (every method, every lookup entry, the blur, the fields), not
-# every OpenCL test. The cache is warm by now.
+# pass runs the tests that launch every kernel (every method, every lookup
+# entry, the blur, the fields), not every OpenCL test, and the runtime's and
+# the cache's own tests in a second process (below). The cache is warm by now.
 precise_tests='*UninitializedOutput.EveryMethodWritesEveryPixel/opencl'
 precise_tests+=':*ReceiverLookup.EveryLookupShapedEntryAgreesWithTheScalarOracle/opencl'
 precise_tests+=':*BilateralTest.OddSizesAndLaneEdgeWidths/opencl:*SdfTest.OddSizesMatchPixelByPixel/opencl'

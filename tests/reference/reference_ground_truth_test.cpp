@@ -25,6 +25,14 @@ Receivers ground_receivers(const std::vector<double>& xs)
     return r;
 }
 
+// Pixel (x, 0) of a 3-channel image set to v.
+void store3(Image& image, int x, Vec3 v)
+{
+    image.at(0, x, 0) = float(v.x);
+    image.at(1, x, 0) = float(v.y);
+    image.at(2, x, 0) = float(v.z);
+}
+
 // A light of side `light_width` at height `light_height` looking straight
 // down (s = +x), over `occluders` and the ground.
 Scene overhead(double light_height, double light_width, std::vector<Primitive> occluders)
@@ -103,11 +111,8 @@ TEST(ReferenceGroundTruth, TheReceiversOwnSurfaceIsExactAtASpheresTerminator)
     Receivers named = Receivers::allocate(int(angles.size()), 1);
     for (int i = 0; i < int(angles.size()); ++i) {
         const Vec3 n{std::cos(angles[std::size_t(i)]), std::sin(angles[std::size_t(i)]), 0};
-        for (int c = 0; c < 3; ++c) {
-            named.world_position.at(c, i, 0) = float((c == 0 ? centre.x : c == 1 ? centre.y : centre.z) +
-                                                     r * (c == 0 ? n.x : c == 1 ? n.y : n.z));
-            named.normal.at(c, i, 0) = float(c == 0 ? n.x : c == 1 ? n.y : n.z);
-        }
+        store3(named.world_position, i, centre + n * r);
+        store3(named.normal, i, n);
         named.hit.at(0, i, 0) = named.mask.at(0, i, 0) = 1;
         named.surface.at(0, i, 0) = 0;  // scene_surfaces: the sphere, then the ground
     }
