@@ -75,6 +75,10 @@ PN_KERNEL void burley(PN_GLOBAL const float* depth, PN_GLOBAL const float* recei
     /* At most max_radius (and a rounding) for z_b <= z, so inside the band
      * in practice; a blocker beyond the receiver (a negative bias) may
      * widen it. */
+    if (!pn_any(found)) { /* no blocker in any lane: lit, the filter's answer unused */
+        pn_store(out, p.out, pn_x, pn_y, 1.0f);
+        return;
+    }
     if (hammersley_disc_leaves_band(held, p.depth, r, radius, pn_and(found, pn_active))) {
         hammersley_store_rerun(out, p.out, pn_x, pn_y);
         return;

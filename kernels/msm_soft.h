@@ -202,10 +202,14 @@ PN_KERNEL void msm_soft_##variant(PN_LOOKUP_ARGS(T, MomentParams))              
     pn_mask lit;                                                                                                    \
     FractionalWindow window = vssm_search_window(msm_soft_geometry(p), r);                                          \
     window = msm_soft_filter_window(msm_soft_moments_##variant(table, window, p), r, z_f, p, &lit);                 \
-    for (int pass = 1; pass < PN_MSM_SOFT_SEARCHES; ++pass) {                                                       \
+    for (int pass = 1; pass < PN_MSM_SOFT_SEARCHES && !pn_all(lit); ++pass) {                                       \
         pn_mask lit_here;                                                                                           \
         window = msm_soft_filter_window(msm_soft_moments_##variant(table, window, p), r, z_f, p, &lit_here);         \
         lit = pn_or(lit, lit_here);                                                                                 \
+    }                                                                                                               \
+    if (pn_all(lit)) { /* a receiver once lit stays lit: the rest is unused */                                      \
+        PN_LOOKUP_STORE(1.0f);                                                                                      \
+        return;                                                                                                     \
     }                                                                                                               \
     PN_LOOKUP_STORE(msm_soft_visibility(msm_soft_moments_##variant(table, window, p),                               \
                                         msm_soft_window_depth(z_f, slope, r, window, p), lit));                     \

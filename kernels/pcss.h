@@ -57,6 +57,10 @@ PN_KERNEL void pcss(PN_GLOBAL const float* depth, PN_GLOBAL const float* receive
     pn_mask found;
     const pn_float z_blocker = pcss_blocker_depth(depth, p, held, r, &found);
     const pn_float radius = pcss_filter_radius(p, r.z, z_blocker);
+    if (!pn_any(found)) { /* no blocker in any lane: lit, the filter's answer unused */
+        pn_store(out, p.out, pn_x, pn_y, 1.0f);
+        return;
+    }
     if (hammersley_disc_leaves_band(held, p.depth, r, radius, pn_and(found, pn_active))) {
         hammersley_store_rerun(out, p.out, pn_x, pn_y);
         return;

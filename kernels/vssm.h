@@ -90,6 +90,10 @@ PN_KERNEL void vssm_##variant(PN_LOOKUP_ARGS(T, ChebyshevParams))               
     const TexelWindow box = vssm_search_box(p, r);                                                               \
     const DepthMoments search = box_moments_##variant(table, p.table, p.limbs, box.x0, box.x1, box.y0, box.y1);  \
     const pn_float z_occ = vssm_blocker_depth(search, r.z, p.min_variance, &lit);                                \
+    if (pn_all(lit)) { /* no blocker in any lane: lit, the filter's answer unused */                             \
+        PN_LOOKUP_STORE(1.0f);                                                                                   \
+        return;                                                                                                  \
+    }                                                                                                            \
     const DepthMoments filter =                                                                                  \
         fractional_moments_##variant(table, p.table, p.limbs, vssm_filter_window(p, r, z_occ));                  \
     const pn_float visibility = chebyshev_visibility(filter, r.z, p.min_variance, p.bleed);                      \
