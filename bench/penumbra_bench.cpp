@@ -15,6 +15,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <exception>
 #include <set>
@@ -27,6 +28,9 @@
 #include "penumbra/moment_table.h"
 #include "simd/cpu_kernels.h"
 
+#ifdef __SSE2__
+#include <immintrin.h>
+#endif
 #ifdef PENUMBRA_HAVE_OPENCV
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -156,6 +160,62 @@ void register_memcpy()
                 set_rates(state, double(size) * size, double(moved));
             };
             finish_registration(benchmark::RegisterBenchmark(("memcpy" + suffix(size, threads)).c_str(), fn));
+        }
+}
+
+// 1b. The exact VSM table build's traffic with none of its arithmetic: the
+// map read and the 16 B/texel written into a real table's two pair planes at
+// the build's addresses, streamed past the caches as the build streams them
+// (16-byte non-temporal stores, SSE2, on every x86-64), rows shared among the
+// threads. table_into / table_traffic is what the arithmetic costs beyond the
+// bytes; table_traffic / memcpy is what the bytes' pattern (80% writes, two
+// streams) allows (docs/moment_table.md, "Session 20").
+void stream_pairs(std::uint32_t* pair, const float* row, int width)
+{
+    int x = 0;
+#ifdef __SSE2__
+    if (reinterpret_cast<std::uintptr_t>(pair) % 16 == 0)
+        for (; x + 4 <= width; x += 4) {
+            const __m128i bits = _mm_castps_si128(_mm_loadu_ps(row + x));
+            _mm_stream_si128(reinterpret_cast<__m128i*>(pair + 2 * x), _mm_unpacklo_epi32(bits, bits));
+            _mm_stream_si128(reinterpret_cast<__m128i*>(pair + 2 * x + 4), _mm_unpackhi_epi32(bits, bits));
+        }
+#endif
+    for (; x < width; ++x) {
+        std::memcpy(pair + 2 * x, row + x, sizeof(float));
+        std::memcpy(pair + 2 * x + 1, row + x, sizeof(float));
+    }
+}
+
+void register_table_traffic()
+{
+    for (int size : kSizes)
+        for (int threads : kThreads) {
+            auto fn = [=](benchmark::State& state) {
+                const Image& depth = depth_map(size);
+                MomentTable table(size, size, kMoments, Precision::Exact);
+                std::uint32_t* origin = table.exact_origin();
+                const std::size_t pitch = std::size_t(table.pitch()), planes = table.plane_pitch() * kVsmLimbs;
+                auto write = [&] {
+                    tbb::parallel_for(tbb::blocked_range<int>(0, size), [&](const tbb::blocked_range<int>& r) {
+                        for (int y = r.begin(); y < r.end(); ++y) {
+                            const float* row = depth.row(0, y);
+                            for (int value = 0; value < kMoments; ++value)
+                                stream_pairs(origin + value * planes + 2 * (std::size_t(y) + 1) * pitch, row, size);
+                        }
+#ifdef __SSE2__
+                        _mm_sfence();
+#endif
+                    });
+                    benchmark::DoNotOptimize(table.storage());
+                };
+                in_arena(threads, [&] {
+                    write();
+                    for (auto _ : state) write();
+                });
+                set_rates(state, double(size) * size, double(size) * size * table_bytes_per_texel(kMoments * kVsmLimbs));
+            };
+            finish_registration(benchmark::RegisterBenchmark(("table_traffic" + suffix(size, threads)).c_str(), fn));
         }
 }
 
@@ -349,6 +409,7 @@ void register_all()
     benchmark::AddCustomContext("penumbra_default_isa", std::string(cpu::chosen_isa()));
 
     register_memcpy();
+    register_table_traffic();
     const std::vector<std::string> backends = testing::backend_names();
     for (const std::string& backend : backends)
         register_table(backend, plan_for(backend).sizes, plan_for(backend).threads);
