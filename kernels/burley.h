@@ -29,7 +29,8 @@
  *    opacity is clamp(1 - (z - z_b) / falloff, 0, 1), fading shadows whose
  *    occluder is far; visibility = 1 - occlusion * opacity.
  * Output: visibility in [0, 1]. Cost: blocker_samples + filter_samples
- * fetches. Keep in sync with tests/support/soft_pcf_reference.cpp. The map
+ * fetches, blocker_samples alone where no receiver of a strip finds a
+ * blocker (as kernels/pcss.h). Keep in sync with tests/support/soft_pcf_reference.cpp. The map
  * is read through a DirectMap, as in kernels/pcss.h.
  */
 #ifndef PENUMBRA_BURLEY_H
@@ -68,6 +69,10 @@ PN_KERNEL void burley(PN_GLOBAL const float* depth, PN_GLOBAL const float* recei
     const pn_float cone_slope = burley_cone_slope(p, r);
     pn_mask found;
     const pn_float z_blocker = burley_blocker_depth(depth, p, held, r, cone_slope, &found);
+    if (!pn_any(found)) { /* no blocker in any lane: lit, the filter's answer unused */
+        pn_store(out, p.out, pn_x, pn_y, 1.0f);
+        return;
+    }
     /* found implies z > z_blocker >= 0 for a valid map; the floor keeps the
      * lanes without a blocker (whose result is discarded) finite. */
     const pn_float radius =
@@ -75,10 +80,6 @@ PN_KERNEL void burley(PN_GLOBAL const float* depth, PN_GLOBAL const float* recei
     /* At most max_radius (and a rounding) for z_b <= z, so inside the band
      * in practice; a blocker beyond the receiver (a negative bias) may
      * widen it. */
-    if (!pn_any(found)) { /* no blocker in any lane: lit, the filter's answer unused */
-        pn_store(out, p.out, pn_x, pn_y, 1.0f);
-        return;
-    }
     if (hammersley_disc_leaves_band(held, p.depth, r, radius, pn_and(found, pn_active))) {
         hammersley_store_rerun(out, p.out, pn_x, pn_y);
         return;

@@ -22,7 +22,8 @@
  * the receiver's own texel, so L = 0 is a hard shadow equal to pcf r=0.
  * Taps outside the map read the nearest edge texel (clamp to edge).
  * Output: visibility in [0, 1]. Cost: blocker_samples + filter_samples
- * fetches per receiver. Keep in sync with tests/support/soft_pcf_reference.cpp.
+ * fetches per receiver, blocker_samples alone where no receiver of a strip
+ * (an OpenCL work-item) finds a blocker (docs/soft_pcf.md). Keep in sync with tests/support/soft_pcf_reference.cpp.
  * The map is read through a DirectMap (kernels/params.h): on the CPU a band
  * of rows converted once; a strip whose filter discs outgrow the band is
  * left to the schedule (hammersley_disc_leaves_band).
@@ -56,11 +57,11 @@ PN_KERNEL void pcss(PN_GLOBAL const float* depth, PN_GLOBAL const float* receive
     const DirectMap held = direct_map(p.direct, p.depth, p.convention);
     pn_mask found;
     const pn_float z_blocker = pcss_blocker_depth(depth, p, held, r, &found);
-    const pn_float radius = pcss_filter_radius(p, r.z, z_blocker);
     if (!pn_any(found)) { /* no blocker in any lane: lit, the filter's answer unused */
         pn_store(out, p.out, pn_x, pn_y, 1.0f);
         return;
     }
+    const pn_float radius = pcss_filter_radius(p, r.z, z_blocker);
     if (hammersley_disc_leaves_band(held, p.depth, r, radius, pn_and(found, pn_active))) {
         hammersley_store_rerun(out, p.out, pn_x, pn_y);
         return;
