@@ -195,13 +195,13 @@ void register_table_traffic()
                 const Image& depth = depth_map(size);
                 MomentTable table(size, size, kMoments, Precision::Exact);
                 std::uint32_t* origin = table.exact_origin();
-                const std::size_t pitch = std::size_t(table.pitch()), planes = table.plane_pitch() * kVsmLimbs;
+                const std::size_t pitch = std::size_t(table.pitch()), value_stride = table.plane_pitch() * kVsmLimbs;
                 auto write = [&] {
                     tbb::parallel_for(tbb::blocked_range<int>(0, size), [&](const tbb::blocked_range<int>& r) {
                         for (int y = r.begin(); y < r.end(); ++y) {
                             const float* row = depth.row(0, y);
                             for (int value = 0; value < kMoments; ++value)
-                                stream_pairs(origin + value * planes + 2 * (std::size_t(y) + 1) * pitch, row, size);
+                                stream_pairs(origin + value * value_stride + 2 * (std::size_t(y) + 1) * pitch, row, size);
                         }
 #ifdef __SSE2__
                         _mm_sfence();
