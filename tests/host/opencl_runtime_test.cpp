@@ -231,16 +231,9 @@ TEST(NoOpenClPlatform, IsReportedNotThrownAndRuntimeSaysWhatToDo)
 
 // ---- with a device --------------------------------------------------------------
 
-std::string why_no_device()
-{
-    static const DeviceList list = list_devices();
-    if (!list.devices.empty()) return {};
-    return "no OpenCL device on this machine (" + list.problem + "); test not run";
-}
-
 TEST(ListDevices, FindsThePoclCpuDevice)
 {
-    if (std::string why = why_no_device(); !why.empty()) GTEST_SKIP() << why;
+    if (std::string why = testing::why_no_opencl_device(); !why.empty()) GTEST_SKIP() << why;
     const DeviceList list = list_devices();
     const DeviceInfo* pocl = nullptr;
     for (const DeviceInfo& device : list.devices) {
@@ -300,7 +293,7 @@ class OpenClRuntime : public ::testing::Test {
 protected:
     static void SetUpTestSuite()
     {
-        if (!why_no_device().empty()) return;
+        if (!testing::why_no_opencl_device().empty()) return;
         fs::remove_all(cache_root());
         runtime = new Runtime(DeviceChoice::Any, ProgramCache(cache_root()));
     }
@@ -312,7 +305,7 @@ protected:
     }
     void SetUp() override
     {
-        if (std::string why = why_no_device(); !why.empty()) GTEST_SKIP() << why;
+        if (std::string why = testing::why_no_opencl_device(); !why.empty()) GTEST_SKIP() << why;
     }
     static fs::path cache_root()
     {

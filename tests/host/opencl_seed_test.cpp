@@ -34,12 +34,6 @@ namespace fs = std::filesystem;
 
 using testing::never_built_source;
 
-std::string why_no_device()
-{
-    static const DeviceList list = list_devices();
-    return list.devices.empty() ? "no OpenCL device on this machine (" + list.problem + "); test not run" : "";
-}
-
 std::map<std::string, std::uintmax_t> listing(const fs::path& dir)
 {
     std::map<std::string, std::uintmax_t> files;
@@ -57,7 +51,7 @@ class OpenClSeed : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        if (std::string why = why_no_device(); !why.empty()) GTEST_SKIP() << why;
+        if (std::string why = testing::why_no_opencl_device(); !why.empty()) GTEST_SKIP() << why;
         root_ = fs::temp_directory_path() / ("penumbra-seed-test-" + std::to_string(::getpid()));
         fs::remove_all(root_);
         fs::create_directories(seed_dir());

@@ -12,7 +12,7 @@
 // weights above 2^-18 (smaller ones cannot move the result by 1e-5: their sum
 // is below 25 2^-18 of the centre's); the float sums. A relative weight error
 // e moves a normalised average by at most 2e times the spread of the values
-// (1): kTolerance = 2e-5 covers 2 (3e-6 + 3e-6) plus the sums' rounding.
+// (1): kBilateralTolerance = 2e-5 covers 2 (3e-6 + 3e-6) plus the sums' rounding.
 #include "penumbra/bilateral.h"
 
 #include <gtest/gtest.h>
@@ -31,7 +31,7 @@ namespace {
 using testing::backend_names;
 using testing::backend_test_name;
 
-constexpr double kTolerance = 2e-5;
+constexpr double kBilateralTolerance = 2e-5;
 // A weighted average of copies of one value m is m within the rounding of two
 // float sums of up to 25 terms (24 2^-24 relative each) and a division.
 constexpr double kAverageOfCopies = 3e-6;
@@ -83,7 +83,7 @@ PN_BACKEND_TEST(BilateralTest, MatchesBruteForceReference)
         const Image mask = testing::random_mask(k.w, k.h, k.channels, 5);
         for (const BilateralOptions& o : option_sets(k.radius)) {
             const Image out = cross_bilateral(ctx, mask, guide, o);
-            EXPECT_LE(testing::max_difference(out, testing::reference_bilateral(mask, guide, o)), kTolerance)
+            EXPECT_LE(testing::max_difference(out, testing::reference_bilateral(mask, guide, o)), kBilateralTolerance)
                 << describe(o) << " on " << k.w << "x" << k.h << "x" << k.channels;
         }
     }
@@ -99,7 +99,8 @@ PN_BACKEND_TEST(BilateralTest, MatchesBruteForceReferenceWithNormals)
     for (BilateralOptions o : option_sets(2)) {
         o.normal_sigma = 0.3f;
         const Image out = cross_bilateral(ctx, mask, guide, o, &normals);
-        EXPECT_LE(testing::max_difference(out, testing::reference_bilateral(mask, guide, o, &normals)), kTolerance)
+        const auto ref = testing::reference_bilateral(mask, guide, o, &normals);
+        EXPECT_LE(testing::max_difference(out, ref), kBilateralTolerance)
             << describe(o) << " with normals";
     }
 }
@@ -119,7 +120,8 @@ PN_BACKEND_TEST(BilateralTest, OddSizesAndLaneEdgeWidths)
             for (const BilateralOptions& o : option_sets(radius)) {
                 if (o.relative) continue;  // the shapes matter here, not the range weight
                 const Image out = cross_bilateral(ctx, mask, guide, o);
-                EXPECT_LE(testing::max_difference(out, testing::reference_bilateral(mask, guide, o)), kTolerance)
+                const auto ref = testing::reference_bilateral(mask, guide, o);
+                EXPECT_LE(testing::max_difference(out, ref), kBilateralTolerance)
                     << describe(o) << " on " << w << "x" << h;
             }
         }
@@ -183,7 +185,7 @@ PN_BACKEND_TEST(BilateralTest, FlatGuideIsAGaussianBlur)
                         testing::gaussian_blur(mask, c, radius, sigma, o.window == BilateralWindow::Disk);
                     for (int y = 0; y < h; ++y)
                         for (int x = 0; x < w; ++x)
-                            ASSERT_NEAR(out.at(c, x, y), blur[std::size_t(y) * w + x], kTolerance)
+                            ASSERT_NEAR(out.at(c, x, y), blur[std::size_t(y) * w + x], kBilateralTolerance)
                                 << describe(o) << " sigma " << sigma << " at " << x << "," << y;
                 }
             }
@@ -294,7 +296,7 @@ PN_BACKEND_TEST(BilateralTest, SeparableIsCloseToFull)
     BilateralOptions separable = full;
     separable.separable = true;
     const Image flat_full = cross_bilateral(ctx, mask, flat, full);
-    EXPECT_LE(testing::max_difference(flat_full, cross_bilateral(ctx, mask, flat, separable)), kTolerance);
+    EXPECT_LE(testing::max_difference(flat_full, cross_bilateral(ctx, mask, flat, separable)), kBilateralTolerance);
     const double distance =
         testing::max_difference(cross_bilateral(ctx, mask, guide, full), cross_bilateral(ctx, mask, guide, separable));
     if (backend == "scalar")

@@ -18,6 +18,7 @@
 #include "host/src/depth_conversion.h"
 #include "simd/cpu_direct_sums.h"
 #include "simd/cpu_schedule.h"
+#include "support/backend_list.h"
 #include "support/depth_conventions.h"
 #include "support/maps.h"
 
@@ -25,13 +26,6 @@ namespace penumbra {
 namespace {
 
 using detail::KernelId;
-
-std::vector<std::string> cpu_tables()
-{
-    std::vector<std::string> names{"scalar"};
-    for (std::string_view isa : cpu::supported_isas()) names.emplace_back(isa);
-    return names;
-}
 
 // The Params of entry K as the host fills them for the whole stored map.
 template <class Params>
@@ -120,7 +114,7 @@ bool same_bits(const Image& a, const Image& b)
 template <KernelId K>
 void expect_bands_equal_taps(const Image& normalized, const Image& receivers, int radius, const std::string& what)
 {
-    for (const std::string& isa : cpu_tables())
+    for (const std::string& isa : testing::cpu_backend_names())
         for (DepthConventionKind kind : testing::kAllConventions) {
             if (kind == DepthConventionKind::Normalized) continue;
             const DepthConvention c = testing::convention_of(kind);
@@ -147,7 +141,7 @@ void expect_bands_equal_taps_at_odd_sizes()
             // One receiver per texel over 70 rows: three bands, each converting its rows.
             const Image map = testing::random_depth(width, 70, 7 + width);
             const Image rx = testing::receivers_on_texels(width, 70, width, 70, 0.1f, 0.9f, 8);
-            for (const std::string& isa : cpu_tables()) {
+            for (const std::string& isa : testing::cpu_backend_names()) {
                 cpu::MapRows rows;
                 const cpu::TapReach reach{detail::dims_of(map), 0.0f, radius, (2 * radius + 1) * (2 * radius + 1)};
                 ASSERT_TRUE(cpu::band_map_rows(cpu::kernels_for(isa), rx, reach, 32, 64, rows));
@@ -190,7 +184,7 @@ void expect_disc_bands_equal_taps_at_odd_sizes()
         const Image rx = testing::receivers_on_texels(width, 70, width, 70, 0.5f, 0.9f, 8);
         const Image out(width, 70, 1);
         const cpu::TapReach reach = cpu::tap_reach(soft_params(K, map, rx, out, {}));
-        for (const std::string& isa : cpu_tables()) {
+        for (const std::string& isa : testing::cpu_backend_names()) {
             cpu::MapRows rows;
             ASSERT_TRUE(cpu::band_map_rows(cpu::kernels_for(isa), rx, reach, 32, 64, rows)) << isa;
             // Rows 32 .. 63 at v = (y + 1/2) / 70, discs reaching 7 rows (pcss: rows 25 .. 70, clipped)
@@ -223,7 +217,7 @@ TEST(DirectSumBands, PcssDiscsOutgrowingTheBandRunOverTheMap)
     const DepthConvention c = testing::convention_of(DepthConventionKind::Perspective);
     const Image map = testing::in_convention(normalized, 0, c);
     const Image rx = testing::in_convention(receivers, 2, c);
-    for (const std::string& isa : cpu_tables()) {
+    for (const std::string& isa : testing::cpu_backend_names()) {
         const cpu::CpuKernels& kernels = cpu::kernels_for(isa);
         Image out(40, 100, 1);
         std::vector<int> bad_rows(100, 0);
@@ -245,7 +239,7 @@ TEST(DirectSumBands, ScatteredReceiversKeepThePerTapConversion)
     const Image map = testing::random_depth(64, 64, 9);
     Image rx = testing::receivers_on_texels(16, 1, 64, 64, 0.1f, 0.9f, 10);
     for (int x = 0; x < 16; ++x) rx.at(1, x, 0) = float(x) / 15.0f;
-    for (const std::string& isa : cpu_tables()) {
+    for (const std::string& isa : testing::cpu_backend_names()) {
         cpu::MapRows rows;
         EXPECT_FALSE(cpu::band_map_rows(cpu::kernels_for(isa), rx, cpu::TapReach{detail::dims_of(map), 0.0f, 1, 9}, 0, 1, rows))
             << isa;
@@ -285,7 +279,7 @@ TEST(DirectSumBands, NanReceiversAndTailsReadInsideTheBand)
     const DepthConvention c = testing::convention_of(DepthConventionKind::Perspective);
     const Image map = testing::in_convention(normalized, 0, c);
     const Image rx = testing::in_convention(receivers, 2, c);
-    for (const std::string& isa : cpu_tables()) {
+    for (const std::string& isa : testing::cpu_backend_names()) {
         const cpu::CpuKernels& kernels = cpu::kernels_for(isa);
         expect_flagged_rows_alone<KernelId::vsm_direct>(kernels, map, rx, c, isa);
         expect_flagged_rows_alone<KernelId::pcss>(kernels, map, rx, c, isa);

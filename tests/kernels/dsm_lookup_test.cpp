@@ -36,7 +36,7 @@ using testing::backend_names;
 using testing::backend_test_name;
 using testing::reference_deep_lookup;
 
-constexpr double kTolerance = 2e-6;
+constexpr double kDsmTolerance = 2e-6;
 
 // Every filter, radius and search the cases run.
 std::vector<DeepLookupOptions> option_grid(float bias = 0.0f)
@@ -88,7 +88,7 @@ PN_BACKEND_TEST(DsmLookup, AgreesWithTheFloat64ReferenceOnOddSizesAndLaneWidths)
             const Image rx = scattered(width, 3, seed++);
             for (const DeepLookupOptions& o : option_grid(0.01f)) {
                 const Image got = deep_lookup(ctx, map, rx, o);
-                EXPECT_LE(worst_error(map, rx, o, got), kTolerance)
+                EXPECT_LE(worst_error(map, rx, o, got), kDsmTolerance)
                     << describe(o) << ", map " << size[0] << "x" << size[1] << ", receivers " << width << "x3";
             }
         }
@@ -103,7 +103,7 @@ PN_BACKEND_TEST(DsmLookup, AgreesOnLongPixelsWithMixedTripCounts)
     const DeepShadowMap map = testing::random_deep_map(9, 4, 7, 200);
     const Image rx = scattered(33, 4, 8);
     for (const DeepLookupOptions& o : option_grid())
-        EXPECT_LE(worst_error(map, rx, o, deep_lookup(ctx, map, rx, o)), kTolerance) << describe(o);
+        EXPECT_LE(worst_error(map, rx, o, deep_lookup(ctx, map, rx, o)), kDsmTolerance) << describe(o);
 }
 
 // Receivers at pixel centres: the box r = 0 reads that pixel alone, and so
@@ -215,7 +215,7 @@ PN_BACKEND_TEST(DsmLookup, AgreesOnTheMapsOfHairFogAndLayers)
         int shadowed = 0;
         for (const DeepLookupOptions& o : option_grid(kDeepDefaultBias)) {
             const Image got = deep_lookup(ctx, map, rx, o);
-            EXPECT_LE(worst_error(map, rx, o, got), kTolerance) << name << " " << describe(o);
+            EXPECT_LE(worst_error(map, rx, o, got), kDsmTolerance) << name << " " << describe(o);
             for (int y = 0; y < rx.height(); ++y)
                 for (int x = 0; x < rx.width(); ++x) shadowed += got.at(0, x, y) < 0.9f;
         }

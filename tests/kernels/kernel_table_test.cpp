@@ -59,16 +59,9 @@ TEST(KernelTable, NamesAreUniqueAndFamiliesNamed)
     EXPECT_EQ(families.size(), std::size_t(detail::kFamilyCount)) << "a family with no entry";
 }
 
-std::vector<std::string> cpu_tables()
-{
-    std::vector<std::string> names{"scalar"};
-    for (std::string_view isa : cpu::supported_isas()) names.emplace_back(isa);
-    return names;
-}
-
 TEST(KernelTable, EveryEntryAndHelperIsSetInEveryCpuTable)
 {
-    for (const std::string& isa : cpu_tables()) {
+    for (const std::string& isa : testing::cpu_backend_names()) {
         const cpu::CpuKernels& table = cpu::kernels_for(isa);
         EXPECT_EQ(std::string(table.isa), isa);
         EXPECT_GE(table.lanes, 1);
@@ -93,7 +86,7 @@ TEST(KernelTable, EveryEntryAndHelperIsSetInEveryCpuTable)
 // moment kernels' cross-backend tests cover it.)
 TEST(DialectDouble, ConversionsArithmeticAndMasksOnEveryCpuBinding)
 {
-    for (const std::string& isa : cpu_tables()) {
+    for (const std::string& isa : testing::cpu_backend_names()) {
         const cpu::CpuKernels& table = cpu::kernels_for(isa);
         const int n = table.lanes;
         std::vector<float> f(n), g(4 * std::size_t(n));
@@ -133,7 +126,7 @@ std::vector<cpu::u32> spread_table()
 TEST(DialectGatherPair, AdjacentElementsPerLaneOnEveryCpuBinding)
 {
     const std::vector<cpu::u32> table = spread_table();
-    for (const std::string& isa : cpu_tables()) {
+    for (const std::string& isa : testing::cpu_backend_names()) {
         const cpu::CpuKernels& t = cpu::kernels_for(isa);
         const int n = t.lanes;
         std::vector<int> index(n);
@@ -171,7 +164,7 @@ std::vector<std::vector<int>> run_patterns(int lanes, int step)
 TEST(DialectGatherPair, RunsOfAdjacentIndicesReadTheSameElements)
 {
     const std::vector<cpu::u32> table = spread_table();
-    for (const std::string& isa : cpu_tables()) {
+    for (const std::string& isa : testing::cpu_backend_names()) {
         const cpu::CpuKernels& t = cpu::kernels_for(isa);
         const int n = t.lanes;
         for (const std::vector<int>& index : run_patterns(n, 1)) {
@@ -190,7 +183,7 @@ TEST(DialectGatherPair, RunsOfAdjacentIndicesReadTheSameElements)
 void expect_upair_patterns(const std::function<std::vector<std::vector<int>>(int lanes)>& make, std::size_t shift)
 {
     const std::vector<cpu::u32> table = spread_table();
-    for (const std::string& isa : cpu_tables()) {
+    for (const std::string& isa : testing::cpu_backend_names()) {
         const cpu::CpuKernels& t = cpu::kernels_for(isa);
         const int n = t.lanes;
         const std::vector<std::vector<int>> patterns = make(n);
@@ -242,7 +235,7 @@ TEST(DialectUpair, SpansOfPairsReadTheSameElements)
 TEST(DialectUpair, WrappingDifferencesJoinExactlyOnEveryCpuBinding)
 {
     const std::vector<cpu::u32> table = spread_table();
-    for (const std::string& isa : cpu_tables()) {
+    for (const std::string& isa : testing::cpu_backend_names()) {
         const cpu::CpuKernels& t = cpu::kernels_for(isa);
         const int n = t.lanes;
         std::vector<int> a(n), b(n);
@@ -265,7 +258,7 @@ TEST(DialectUpair, WrappingDifferencesJoinExactlyOnEveryCpuBinding)
 // is plain int; the deep map lookup's tests cover it on every backend.)
 TEST(DialectIndex, ComparesAndSelectsIntLanesOnEveryCpuBinding)
 {
-    for (const std::string& isa : cpu_tables()) {
+    for (const std::string& isa : testing::cpu_backend_names()) {
         const cpu::CpuKernels& t = cpu::kernels_for(isa);
         const int n = t.lanes;
         std::vector<cpu::u32> a(n), b(n);

@@ -38,13 +38,18 @@
 #include "support/fidelity_cases.h"
 #include "support/moment_reference.h"
 
-namespace penumbra {
+// A namespace of its own: the using-directive below must not reach the test
+// sources that share this one's unity batch (tests/CMakeLists.txt), and the
+// using-declarations win over penumbra::Method and penumbra::Mode there.
+namespace penumbra::moment_fidelity_test {
 namespace {
 
 using namespace testing::fidelity;
+using testing::fidelity::Method;
+using testing::fidelity::Mode;
 using testing::backend_test_name;
 
-struct Case {
+struct FidelityCase {
     std::string name;
     Image map, receivers;
     std::vector<Setting> box, soft;  // the settings run on this case
@@ -84,10 +89,10 @@ std::vector<Setting> lights(std::initializer_list<float> list)
     return s;
 }
 
-const std::vector<Case>& cases()
+const std::vector<FidelityCase>& cases()
 {
-    static const std::vector<Case> all = [] {
-        std::vector<Case> c;
+    static const std::vector<FidelityCase> all = [] {
+        std::vector<FidelityCase> c;
         const auto all_radii = radii({0, 1, 2, 8, kExactMaxRadius});
         const auto small_lights = lights({0.05f, 0.3f, 0.9f});
         std::uint32_t seed = 90;
@@ -146,7 +151,7 @@ std::string setting_name(Method m, Setting s)
 }
 
 // The reference answers of a case, computed once per test process.
-const std::vector<double>& references(const Case& c, Method m, Setting s, const Params& p)
+const std::vector<double>& references(const FidelityCase& c, Method m, Setting s, const Params& p)
 {
     static std::map<std::string, std::vector<double>> cache;
     const std::string key = c.name + "/" + method_name(m) + "/" + setting_name(m, s);
@@ -156,7 +161,7 @@ const std::vector<double>& references(const Case& c, Method m, Setting s, const 
 }
 
 // A light a map's exact table accepts: its search window within 253 texels.
-bool light_accepted(const Case& c, float light)
+bool light_accepted(const FidelityCase& c, float light)
 {
     return light * 0.5f * float(std::max(c.map.width(), c.map.height())) <= float(kExactMaxRadius - 1);
 }
@@ -171,7 +176,7 @@ static_assert(kVsmDirectMaxRadius < kDirectMaxTestedRadius && kMsmDirectMaxRadiu
 
 // Visits every method of a case with the library's runs of its settings in `mode`.
 template <class Visit>
-void for_each_run(Context& ctx, Mode mode, const Case& c, Visit visit)
+void for_each_run(Context& ctx, Mode mode, const FidelityCase& c, Visit visit)
 {
     for (Method m : kMethods) {
         const std::vector<Mode> modes = modes_of(m);
@@ -262,7 +267,7 @@ class MomentFidelity : public ::testing::TestWithParam<std::string> {};
 PN_BACKEND_TEST(MomentFidelity, DefaultModeWithinToleranceOfTheFloat64Method)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    for (const Case& c : cases())
+    for (const FidelityCase& c : cases())
         for_each_run(ctx, Mode::Default, c, [&](Method m, Setting s, const LibraryRun& run) {
             const Tally t = judge_all(m, c.map, c.receivers, run.out, run.params, 5, &references(c, m, s, run.params));
             EXPECT_EQ(t.failed, 0) << method_name(m) << " on " << c.name << ", " << setting_name(m, s) << ": "
@@ -280,7 +285,7 @@ PN_BACKEND_TEST(MomentFidelity, DirectSumsWithinToleranceOfTheFloat64Method)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     int runs = 0;
-    for (const Case& c : cases())
+    for (const FidelityCase& c : cases())
         for_each_run(ctx, Mode::Direct, c, [&](Method m, Setting s, const LibraryRun& run) {
             ++runs;
             const Tally t = judge_all(m, c.map, c.receivers, run.out, run.params, 5, &references(c, m, s, run.params));
@@ -299,7 +304,7 @@ PN_BACKEND_TEST(MomentFidelity, DirectSumsWithinToleranceOfTheFloat64Method)
 PN_BACKEND_TEST(MomentFidelity, SixteenBitMsmWithinToleranceOfItsDequantizedMoments)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    for (const Case& c : cases())
+    for (const FidelityCase& c : cases())
         for_each_run(ctx, Mode::Msm16, c, [&](Method m, Setting s, const LibraryRun& run) {
             const Tally t = judge_all(m, c.map, c.receivers, run.out, run.params, 5);
             EXPECT_EQ(t.failed, 0) << method_name(m) << " (16-bit) on " << c.name << ", " << setting_name(m, s)
@@ -316,7 +321,7 @@ PN_BACKEND_TEST(MomentFidelity, SixteenBitMsmWithinToleranceOfItsDequantizedMome
 PN_BACKEND_TEST(MomentFidelity, UnbiasedMsmIsExactOnOneAndTwoDepthWindows)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    for (const Case& c : cases()) {
+    for (const FidelityCase& c : cases()) {
         if (c.map.width() * c.map.height() > 64 * 64) continue;  // the special windows and the small maps
         const MsmTable t = build_msm_table(ctx, c.map);
         Params p;
@@ -357,7 +362,7 @@ PN_BACKEND_TEST(MomentAgreement, EveryBackendAgreesWithScalarOnTheFidelityCases)
     Context& scalar = testing::scalar_oracle(backend);
     std::map<Method, double> worst;
     std::map<Method, long> differing, total;
-    for (const Case& c : cases())
+    for (const FidelityCase& c : cases())
         for (Mode mode : {Mode::Default, Mode::Direct}) {
             std::vector<Image> baseline;
             for_each_run(scalar, mode, c,
@@ -403,4 +408,4 @@ TEST(MomentFidelitySlowTest, VsmAt16384)
 }
 
 }  // namespace
-}  // namespace penumbra
+}  // namespace penumbra::moment_fidelity_test

@@ -32,7 +32,7 @@ using testing::RefResult;
 constexpr double kDecisionMargin = 1e-5;
 // The kernels sum at most 256 weights in float (Gaussian: products of
 // float32 exponentials): 1e-5 covers the rounding.
-constexpr double kTolerance = 1e-5;
+constexpr double kPcfTolerance = 1e-5;
 
 // Receivers with u, v in [-0.1, 1.1] (some clamped), z in [0, 1], and the
 // derivative planes: slopes up to 4 depth units per unit of texture and a
@@ -108,7 +108,7 @@ int expect_matches_reference(const std::string& backend, const Case& c, const Im
                     ++undecided;
                     continue;
                 }
-                if (std::abs(out.at(0, x, y) - want.visibility) <= kTolerance) continue;
+                if (std::abs(out.at(0, x, y) - want.visibility) <= kPcfTolerance) continue;
                 ADD_FAILURE() << backend << " kernel " << int(c.kernel) << " bias mode " << int(b.mode) << " map "
                               << map.width() << "x" << map.height() << " receiver (" << x << ", " << y
                               << "): " << out.at(0, x, y) << ", reference " << want.visibility;

@@ -50,22 +50,22 @@ constexpr double kMaxFlippedShare = 0.01;  // receivers with any ray landing oth
 Vec3 position(const Image& world, int x, int y) { return {world.at(0, x, y), world.at(1, x, y), world.at(2, x, y)}; }
 
 // A scene with its receivers and maps, made once per test process.
-struct Case {
+struct PismoCase {
     reference::Scene scene;
     reference::Receivers receivers;
     reference::PismoMaps maps;
 };
 
-const Case& scene_case(const std::string& name, int level, int map_size = 128)
+const PismoCase& scene_case(const std::string& name, int level, int map_size = 128)
 {
-    static std::map<std::string, Case> cases;
+    static std::map<std::string, PismoCase> cases;
     const std::string key = name + "/" + std::to_string(level) + "/" + std::to_string(map_size);
     auto it = cases.find(key);
     if (it == cases.end()) {
         const reference::Scene scene = reference::builtin_scene(name);
         reference::LayeredMapOptions mo;
         mo.size = map_size;
-        it = cases.emplace(key, Case{scene, reference::render_receivers(scene, 52, 36),
+        it = cases.emplace(key, PismoCase{scene, reference::render_receivers(scene, 52, 36),
                                      reference::render_pismo_maps(scene, level, mo)})
                  .first;
     }
@@ -88,7 +88,7 @@ PN_BACKEND_TEST(Pismo, AgreesWithTheFloat64ReferenceReceiverByReceiver)
     for (const char* name : {"contact", "overlap"})
         for (int level : {0, 1})
             for (PismoDepths depths : {PismoDepths::Layered, PismoDepths::MaximumDepth}) {
-                const Case& c = scene_case(name, level);
+                const PismoCase& c = scene_case(name, level);
                 const bool layered = depths == PismoDepths::Layered;
                 const auto ref = layered ? testing::PismoReferenceMaps::layered(c.maps)
                                          : testing::PismoReferenceMaps::maximum_depth(c.maps);
@@ -128,7 +128,7 @@ PN_BACKEND_TEST(Pismo, WithNormalsAgreesWithTheFloat64ReferenceReceiverByReceive
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     for (const char* name : {"contact", "overlap"}) {
-        const Case& c = scene_case(name, 1);
+        const PismoCase& c = scene_case(name, 1);
         const auto ref = testing::PismoReferenceMaps::layered(c.maps);
         const Image rx6 = c.receivers.positions_and_normals();
         PismoOptions o;
@@ -162,7 +162,7 @@ PN_BACKEND_TEST(Pismo, WithSurfaceIdsAgreesWithTheFloat64ReferenceReceiverByRece
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     for (const char* name : {"fence", "contact", "overlap"}) {
-        const Case& c = scene_case(name, 1);
+        const PismoCase& c = scene_case(name, 1);
         const auto ref = testing::PismoReferenceMaps::layered(c.maps);
         const Image rx7 = c.receivers.positions_normals_and_surface();
         PismoOptions o;
@@ -236,7 +236,7 @@ PN_BACKEND_TEST(Pismo, TheReceiversOwnSurfaceMeetsTheClosedForms)
 PN_BACKEND_TEST(Pismo, MaximumDepthMapsFailWhereTheCastersShadowThemselves)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    const Case& c = scene_case("contact", 1, 384);
+    const PismoCase& c = scene_case("contact", 1, 384);
     static const Image truth = [&] {
         reference::GroundTruthOptions go;
         go.strata = 8;
@@ -283,7 +283,7 @@ detail::PismoRayTable ray_at_vertex(const reference::LightMesh& mesh, int t, int
 PN_BACKEND_TEST(Pismo, ARayEndingAtALightVertexIsThatVertexsHardShadowTest)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
-    const Case& c = scene_case("contact", 1);
+    const PismoCase& c = scene_case("contact", 1);
     const PismoMaps maps = library_maps(c.maps);
     const Image& world = c.receivers.world_position;
     for (int t : {0, 5})
@@ -400,7 +400,7 @@ PN_BACKEND_TEST(Pismo, OddSizesAndChunksGiveTheWholeImagesValues)
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     // Positions only, and fence with normals and surface ids (the layer walk).
     for (const bool ids : {false, true}) {
-        const Case& c = scene_case(ids ? "fence" : "contact", 0);
+        const PismoCase& c = scene_case(ids ? "fence" : "contact", 0);
         const PismoMaps maps = library_maps(c.maps, PismoDepths::Layered, ids);
         const Image world = ids ? c.receivers.positions_normals_and_surface() : c.receivers.world_position;
         PismoOptions o;
@@ -456,7 +456,7 @@ TEST(PismoRays, StratifyEachTriangleByItsShareOfTheArea)
 // PismoMaps holds its maps packed for the kernel; they come back as made.
 TEST(PismoMapsHeld, TestAndBledMapsComeBackAsMade)
 {
-    const Case& c = scene_case("contact", 0, 16);
+    const PismoCase& c = scene_case("contact", 0, 16);
     for (PismoDepths depths : {PismoDepths::Layered, PismoDepths::MaximumDepth}) {
         const PismoMaps maps = library_maps(c.maps, depths);
         const std::vector<LayeredDepthMap> test = maps.test_maps(), bled = maps.bled_maps();
@@ -484,7 +484,7 @@ TEST(PismoMapsHeld, TestAndBledMapsComeBackAsMade)
 class PismoBadInput : public ::testing::Test {
 protected:
     Context& ctx = PN_CONTEXT_OR_SKIP("scalar");
-    const Case& c = scene_case("contact", 0, 16);
+    const PismoCase& c = scene_case("contact", 0, 16);
     std::vector<std::array<double, 3>> vertices()
     {
         std::vector<std::array<double, 3>> v;

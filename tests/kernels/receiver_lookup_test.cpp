@@ -44,7 +44,7 @@ using testing::backend_names;
 using testing::backend_test_name;
 using testing::expect_error;
 
-constexpr double kTolerance = 2e-5;
+constexpr double kLookupTolerance = 2e-5;
 
 // A 9x5 map; receivers 7x3 (odd, below every lane count) and 33x1 (around
 // 16 and 32 lanes) over its texel centres, depths straddling the map's.
@@ -346,7 +346,7 @@ PN_BACKEND_TEST(ReceiverLookup, EveryLookupShapedEntryAgreesWithTheScalarOracle)
                         run(oracle, rx, expected);
                         run(ctx, rx, got);
                         const testing::Difference d = testing::difference(got, expected);
-                        EXPECT_LE(d.max, kTolerance) << detail::kernel_name(K) << " " << rx.width() << "x"
+                        EXPECT_LE(d.max, kLookupTolerance) << detail::kernel_name(K) << " " << rx.width() << "x"
                                                      << rx.height() << " on " << backend;
                         for (int y = 0; y < rx.height(); ++y)
                             for (int x = 0; x < rx.width(); ++x) {

@@ -27,7 +27,7 @@ namespace {
 using testing::backend_names;
 using testing::backend_test_name;
 
-constexpr double kFov = 45.0;
+constexpr double kFovDegrees = 45.0;
 const SsaoUnusable kRules[] = {SsaoUnusable::Paired, SsaoUnusable::Zero, SsaoUnusable::Half,
                                SsaoUnusable::Renormalise};
 
@@ -63,13 +63,13 @@ PN_BACKEND_TEST(SsaoVoTest, APlaneFacingTheCameraIsHalfOccludedExactly)
                 Image depth(w, h, 1);
                 for (int y = 0; y < h; ++y)
                     for (int x = 0; x < w; ++x) depth.at(0, x, y) = 3.0f;
-                const Image o = ssao_obscurance(ctx, depth, kFov, obscurance(rule, rotate));
+                const Image o = ssao_obscurance(ctx, depth, kFovDegrees, obscurance(rule, rotate));
                 // Zero counts off-screen samples as open: exact where the disc is on screen.
                 const int margin = rule == SsaoUnusable::Zero ? int(0.07 * h) + 1 : 0;
                 EXPECT_EQ(largest_deviation(o, margin), 0.0) << w << "x" << h << " rule " << int(rule);
                 SsaoOptions ao = obscurance(rule, rotate);
                 ao.output = SsaoOutput::Accessibility;
-                const Image a = ssao_obscurance(ctx, depth, kFov, ao);
+                const Image a = ssao_obscurance(ctx, depth, kFovDegrees, ao);
                 if (margin == 0) {
                     EXPECT_EQ(a.at(0, w - 1, h - 1), 1.0f) << "an open plane has the AO term 1";
                 }
@@ -137,12 +137,12 @@ PN_BACKEND_TEST(SsaoVoTest, ACornerIsThreeQuartersOccluded)
     int n = 0;
     const SsaoOptions o = obscurance(SsaoUnusable::Paired, true, 16);
     for (int edge = 40; edge < 44; ++edge) {
-        const Image depth = testing::ssao_corner_depth(w, h, kFov, 5.0, edge);
-        const Image out = ssao_obscurance(ctx, depth, kFov, o);
+        const Image depth = testing::ssao_corner_depth(w, h, kFovDegrees, 5.0, edge);
+        const Image out = ssao_obscurance(ctx, depth, kFovDegrees, o);
         for (int y = 20; y < 24; ++y) {
             sum += out.at(0, edge, y);
             ++n;
-            EXPECT_NEAR(out.at(0, edge, y), testing::ssao_reference(depth, kFov, o, edge, y), 1e-5);
+            EXPECT_NEAR(out.at(0, edge, y), testing::ssao_reference(depth, kFovDegrees, o, edge, y), 1e-5);
         }
     }
     EXPECT_NEAR(sum / n, 0.75, 0.02);
@@ -228,7 +228,7 @@ TEST(SsaoErrors, BadInputIsATypedErrorNamingIt)
 {
     Context& ctx = PN_CONTEXT_OR_SKIP("scalar");
     Image depth(8, 4, 1);
-    auto run = [&](SsaoOptions o, double fov = kFov) { return [&ctx, &depth, o, fov] { ssao_obscurance(ctx, depth, fov, o); }; };
+    auto run = [&](SsaoOptions o, double fov = kFovDegrees) { return [&ctx, &depth, o, fov] { ssao_obscurance(ctx, depth, fov, o); }; };
     auto with = [](auto set) {
         SsaoOptions o;
         set(o);
@@ -250,9 +250,9 @@ TEST(SsaoErrors, BadInputIsATypedErrorNamingIt)
     depth.at(0, 5, 2) = NAN;
     expect_error(run({}), ErrorCategory::InvalidData, "ssao", {"(5, 2)"});
     const Image two(8, 4, 2);
-    expect_error([&] { ssao_obscurance(ctx, two, kFov); }, bad, "ssao", {"1 channel"});
+    expect_error([&] { ssao_obscurance(ctx, two, kFovDegrees); }, bad, "ssao", {"1 channel"});
     Image same(8, 4, 1);
-    expect_error([&] { ssao_obscurance(ctx, same, kFov, {}, same); }, bad, "ssao", {"another"});
+    expect_error([&] { ssao_obscurance(ctx, same, kFovDegrees, {}, same); }, bad, "ssao", {"another"});
 }
 
 }  // namespace

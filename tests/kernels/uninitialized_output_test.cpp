@@ -54,7 +54,7 @@ Image random_depths(int width, int height, unsigned seed)
 }
 
 // u, v across the map (a little beyond its edges), z around the depths.
-Image random_receivers(int width, int height, unsigned seed)
+Image receivers_around_the_map(int width, int height, unsigned seed)
 {
     return testing::scattered_receivers(width, height, -0.05f, 1.05f, 0.1f, 0.9f, seed);
 }
@@ -94,7 +94,7 @@ PN_BACKEND_TEST(UninitializedOutput, EveryMethodWritesEveryPixel)
     Context& ctx = PN_CONTEXT_OR_SKIP(backend);
     const Image map = random_depths(23, 19, 7);
     for (const int width : testing::lane_edge_widths()) {
-        const Image receivers = random_receivers(width, 3, unsigned(width));
+        const Image receivers = receivers_around_the_map(width, 3, unsigned(width));
         for (const MethodPair& method : method_pairs()) {
             Image out(width, 3, 1);
             out.fill(0, std::nanf(""));

@@ -6,10 +6,16 @@
 
 namespace penumbra::testing {
 
-std::vector<std::string> backend_names()
+std::vector<std::string> cpu_backend_names()
 {
     std::vector<std::string> names{"scalar"};
     for (std::string_view isa : cpu::supported_isas()) names.emplace_back(isa);
+    return names;
+}
+
+std::vector<std::string> backend_names()
+{
+    std::vector<std::string> names = cpu_backend_names();
     names.emplace_back("opencl");
     return names;
 }

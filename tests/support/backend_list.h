@@ -13,6 +13,8 @@ namespace penumbra::testing {
 
 // "scalar", "sse4.2", "avx2", "avx512" (those this CPU runs), "opencl".
 std::vector<std::string> backend_names();
+// backend_names() without "opencl": the CPU kernel tables, scalar first.
+std::vector<std::string> cpu_backend_names();
 // backend_names() without "scalar": for tests that compare a backend with the
 // scalar oracle, which must not be instantiated (and pass) for scalar itself.
 std::vector<std::string> non_scalar_backends();
