@@ -32,6 +32,11 @@ struct BilateralBuffers {
     Output<int> flags;
 };
 
+// Rows per band of the OpenCL table builds: each band's work-item scans its
+// rows' columns, and the bands are joined after (opencl_moments.cpp,
+// opencl_moment_table.cpp).
+inline constexpr int kTableBandHeight = 32;
+
 class OpenClBackend final : public detail::BackendImpl {
 public:
     // Finds the device; builds no program (that happens on first use).

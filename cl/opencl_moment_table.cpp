@@ -14,11 +14,9 @@ using detail::KernelId;
 
 namespace {
 
-constexpr int kBandHeight = 32;
-
 SatParams table_params(const Image& depth, const MomentTable& table, int bands)
 {
-    return detail::sat_params(depth, table, bands, kBandHeight);
+    return detail::sat_params(depth, table, bands, kTableBandHeight);
 }
 
 }  // namespace
@@ -26,8 +24,8 @@ SatParams table_params(const Image& depth, const MomentTable& table, int bands)
 // The band height and column rows of this schedule, for a device table's build.
 SatParams device_table_params(pn_dims depth, pn_dims table, int limbs)
 {
-    const int bands = (depth.height + kBandHeight - 1) / kBandHeight;
-    return detail::sat_params(depth, table, 2, limbs, bands, kBandHeight);
+    const int bands = (depth.height + kTableBandHeight - 1) / kTableBandHeight;
+    return detail::sat_params(depth, table, 2, limbs, bands, kTableBandHeight);
 }
 
 namespace {
@@ -48,7 +46,7 @@ template void OpenClBackend::join_bands(const Output<std::uint32_t>&, const Outp
 void OpenClBackend::build_moment_table(const Image& depth, MomentTable& table, int* bad_rows)
 {
     translate_cl_errors([&] {
-        const int bands = (depth.height() + kBandHeight - 1) / kBandHeight;
+        const int bands = (depth.height() + kTableBandHeight - 1) / kTableBandHeight;
         const cl_mem_flags access = CL_MEM_READ_WRITE;
         cl::Buffer storage = table_storage(context(), table, access);
         const cl::Buffer origin = table_origin(storage, table, access);
@@ -77,7 +75,7 @@ template <KernelId K, class T>
 void OpenClBackend::enqueue_table_build_as(const Input<float>& depth, const Output<T>& origin, const SatParams& p,
                                            int planes, const Output<int>& flags)
 {
-    const int bands = (p.depth.height + kBandHeight - 1) / kBandHeight;
+    const int bands = (p.depth.height + kTableBandHeight - 1) / kTableBandHeight;
     const Output<T> carry = device_zeros<T>(std::size_t(p.depth.height) * std::size_t(planes));
     const Output<T> columns = device_zeros<T>(std::size_t(p.columns.plane_pitch) * std::size_t(planes));
     launch<K>(Tasks{bands}, depth, origin, carry, columns, flags, p);

@@ -11,12 +11,6 @@ namespace penumbra::cl_backend {
 
 using detail::KernelId;
 
-namespace {
-
-constexpr int kBandHeight = 32;
-
-}  // namespace
-
 void OpenClBackend::build_encoded_table(const Image& depth, const EncodedSatParams& params, MomentTable& table,
                                         int* bad_rows)
 {
@@ -32,10 +26,10 @@ template <KernelId K, class T>
 void OpenClBackend::build_encoded_table_as(const Image& depth, const EncodedSatParams& params, MomentTable& table,
                                            int* bad_rows)
 {
-    const int bands = (depth.height() + kBandHeight - 1) / kBandHeight;
+    const int bands = (depth.height() + kTableBandHeight - 1) / kTableBandHeight;
     const int pitch = padded_pitch(depth.width());
     EncodedSatParams p = params;
-    p.band_height = kBandHeight;
+    p.band_height = kTableBandHeight;
     p.columns = {depth.width(), bands, pitch, pitch * bands};
 
     const auto target = table_output<T>(context(), table);

@@ -16,7 +16,7 @@
 namespace penumbra {
 namespace {
 
-const std::string kOp = "ambient";
+const std::string kAmbientOp = "ambient";
 
 int terms_of(int order) { return (order + 1) * (order + 1); }
 
@@ -49,7 +49,7 @@ AmbientParams params_for(const AmbientLighting& l, const Image& receivers, const
 
 Error bad_pixel(int c, int x, int y, float v, const std::string& what)
 {
-    return Error(ErrorCategory::InvalidData, kOp, "receivers",
+    return Error(ErrorCategory::InvalidData, kAmbientOp, "receivers",
                  "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") of the receivers: " + what,
                  BadPixel{c, x, y, v});
 }
@@ -85,7 +85,7 @@ std::vector<int> run(Context& context, const Image& records, const Image& rx, co
 
 void check_size(const Image& rx, const Image& out, int channels, const std::string& what)
 {
-    require(out.width() == rx.width() && out.height() == rx.height() && out.channels() == channels, kOp, "out",
+    require(out.width() == rx.width() && out.height() == rx.height() && out.channels() == channels, kAmbientOp, "out",
             "the output must have " + std::to_string(channels) + " channel(s) (" + what + ") and the receivers' size (" +
                 std::to_string(rx.width()) + "x" + std::to_string(rx.height()) + ")");
 }
@@ -100,12 +100,12 @@ int ambient_receiver_channels(const AmbientLighting& lighting)
 
 void ambient_irradiance(Context& context, const Image& receivers, const AmbientLighting& lighting, Image& out)
 {
-    require(lighting.light.order == 1 || lighting.light.order == 2, kOp, "light", "the light rig's order must be 1 or 2");
-    require(!lighting.dark || lighting.dark->order == 1 || lighting.dark->order == 2, kOp, "dark",
+    require(lighting.light.order == 1 || lighting.light.order == 2, kAmbientOp, "light", "the light rig's order must be 1 or 2");
+    require(!lighting.dark || lighting.dark->order == 1 || lighting.dark->order == 2, kAmbientOp, "dark",
             "the dark rig's order must be 1 or 2");
-    require(!receivers.empty(), kOp, "receivers", "the receivers image is empty (0 pixels)");
+    require(!receivers.empty(), kAmbientOp, "receivers", "the receivers image is empty (0 pixels)");
     const int channels = ambient_receiver_channels(lighting);
-    require(receivers.channels() == channels, kOp, "receivers",
+    require(receivers.channels() == channels, kAmbientOp, "receivers",
             "the receivers must have " + std::to_string(channels) +
                 " channels (normal x, y, z; then the blend factor with a dark rig and no volumes, or the world "
                 "position with volumes), got " + std::to_string(receivers.channels()));
@@ -125,7 +125,7 @@ Image ambient_irradiance(Context& context, const Image& receivers, const Ambient
 
 Image ambient_volume_factor(Context& context, const Image& positions, const AmbientVolumes& volumes)
 {
-    require(!positions.empty() && positions.channels() == 3, kOp, "positions",
+    require(!positions.empty() && positions.channels() == 3, kAmbientOp, "positions",
             "the positions must have 3 channels (world x, y, z) and at least one pixel");
     Image out(positions.width(), positions.height(), 1);
     AmbientParams p{};
@@ -135,7 +135,7 @@ Image ambient_volume_factor(Context& context, const Image& positions, const Ambi
     const std::vector<int> bad_rows = run<detail::KernelId::ambient_volumes>(context, records_image(volumes),
                                                                             positions, p, out);
     if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end())
-        require_finite(positions, kOp, "the positions", "positions");
+        require_finite(positions, kAmbientOp, "the positions", "positions");
     return out;
 }
 

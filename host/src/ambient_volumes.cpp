@@ -12,11 +12,11 @@
 namespace penumbra {
 namespace {
 
-const std::string kOp = "ambient_volumes";
+const std::string kVolumesOp = "ambient_volumes";
 
 static_assert(AmbientVolumes::kFloats == PN_AMBIENT_VOLUME_FLOATS, "the public record size is the kernel's");
 
-bool finite(AmbientVector v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool all_finite(AmbientVector v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 double dot(AmbientVector a, AmbientVector b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
@@ -25,10 +25,10 @@ void check_axes(const AmbientVolume& v, const std::string& name)
     const AmbientVector axes[3] = {v.axis_x, v.axis_y, v.axis_z};
     const char* names[3] = {"axis_x", "axis_y", "axis_z"};
     for (int i = 0; i < 3; ++i) {
-        require(finite(axes[i]), kOp, "volumes", name + names[i] + " is not finite");
+        require(all_finite(axes[i]), kVolumesOp, "volumes", name + names[i] + " is not finite");
         for (int j = i; j < 3; ++j) {
             const double expected = i == j ? 1.0 : 0.0;
-            require(std::abs(dot(axes[i], axes[j]) - expected) <= 1e-5, kOp, "volumes",
+            require(std::abs(dot(axes[i], axes[j]) - expected) <= 1e-5, kVolumesOp, "volumes",
                     name + "axis_x, axis_y and axis_z must be orthonormal (" + names[i] + " . " + names[j] + " = " +
                         std::to_string(dot(axes[i], axes[j])) + ")");
         }
@@ -37,15 +37,15 @@ void check_axes(const AmbientVolume& v, const std::string& name)
 
 void check_volume(const AmbientVolume& v, const std::string& name)
 {
-    require(finite(v.center), kOp, "volumes", name + "center is not finite");
+    require(all_finite(v.center), kVolumesOp, "volumes", name + "center is not finite");
     const double h[3] = {v.half_size.x, v.half_size.y, v.half_size.z};
     for (double s : h)
-        require(std::isfinite(s) && s > 0.0, kOp, "volumes",
+        require(std::isfinite(s) && s > 0.0, kVolumesOp, "volumes",
                 name + "half_size must be finite and > 0 on every axis (a volume of zero scale darkens nothing)");
     check_axes(v, name);
-    require(std::isfinite(v.scale_bias) && v.scale_bias > 0.0, kOp, "volumes",
+    require(std::isfinite(v.scale_bias) && v.scale_bias > 0.0, kVolumesOp, "volumes",
             name + "scale_bias must be finite and > 0 (about 1.05 hides tessellation seams)");
-    require(std::isfinite(v.falloff_delay) && v.falloff_delay >= 0.0 && v.falloff_delay < 1.0, kOp, "volumes",
+    require(std::isfinite(v.falloff_delay) && v.falloff_delay >= 0.0 && v.falloff_delay < 1.0, kVolumesOp, "volumes",
             name + "falloff_delay must be in [0, 1)");
 }
 

@@ -16,7 +16,7 @@
 namespace penumbra {
 namespace {
 
-const std::string kOp = "cross_bilateral";
+const std::string kBilateralOp = "cross_bilateral";
 
 // Largest scale the kernel multiplies a difference by (PN_BILATERAL_MAX_SCALE):
 // keeps 0 * scale at 0 for the tiniest sigmas.
@@ -29,51 +29,53 @@ std::string size_text(const Image& image)
 
 void check_images(const Image& mask, const Image& guide, const Image* normals)
 {
-    require(!mask.empty(), kOp, "the mask is empty (0 pixels)");
-    require(mask.channels() <= kBilateralMaxChannels, kOp,
+    require(!mask.empty(), kBilateralOp, "the mask is empty (0 pixels)");
+    require(mask.channels() <= kBilateralMaxChannels, kBilateralOp,
             "the mask has " + std::to_string(mask.channels()) +
                 " channels; the filter takes 1 to 4 (filter the others in a second call)");
-    require(guide.channels() == 1, kOp,
+    require(guide.channels() == 1, kBilateralOp,
             "the guide depth must have 1 channel, got " + std::to_string(guide.channels()));
-    require(guide.width() == mask.width() && guide.height() == mask.height(), kOp,
+    require(guide.width() == mask.width() && guide.height() == mask.height(), kBilateralOp,
             "the guide depth is " + size_text(guide) + " but the mask is " + size_text(mask) +
                 "; they must have the same size");
     if (!normals) return;
-    require(normals->channels() == 3, kOp,
+    require(normals->channels() == 3, kBilateralOp,
             "the guide normals must have 3 channels (x, y, z), got " + std::to_string(normals->channels()));
-    require(normals->width() == mask.width() && normals->height() == mask.height(), kOp,
+    require(normals->width() == mask.width() && normals->height() == mask.height(), kBilateralOp,
             "the guide normals are " + size_text(*normals) + " but the mask is " + size_text(mask) +
                 "; they must have the same size");
 }
 
 void check_positive(float value, const std::string& name)
 {
-    require(std::isfinite(value) && value > 0.0f, kOp,
+    require(std::isfinite(value) && value > 0.0f, kBilateralOp,
             name + " must be a finite value > 0 (got " + std::to_string(value) + ")");
 }
 
 void check_options(const BilateralOptions& o)
 {
-    require(o.radius >= 0 && o.radius <= kBilateralMaxRadius, kOp,
+    require(o.radius >= 0 && o.radius <= kBilateralMaxRadius, kBilateralOp,
             "radius must be in [0, " + std::to_string(kBilateralMaxRadius) + "] (got " + std::to_string(o.radius) +
                 "); for a wider blur, filter a downsampled mask");
     check_positive(o.spatial_sigma, "spatial_sigma");
     check_positive(o.depth_sigma, "depth_sigma");
     check_positive(o.normal_sigma, "normal_sigma");
-    require(std::isfinite(o.depth_threshold) && o.depth_threshold >= 0.0f, kOp,
+    require(std::isfinite(o.depth_threshold) && o.depth_threshold >= 0.0f, kBilateralOp,
             "depth_threshold must be a finite value >= 0 (got " + std::to_string(o.depth_threshold) + ")");
-    require(!(o.separable && o.window == BilateralWindow::Disk), kOp,
+    require(!(o.separable && o.window == BilateralWindow::Disk), kBilateralOp,
             "the separable schedule filters a square window; use window = Square or separable = false");
 }
 
 void check_output(const Image& mask, const Image& guide, const Image* normals, const Image& out)
 {
-    require(out.width() == mask.width() && out.height() == mask.height() && out.channels() == mask.channels(), kOp,
+    require(out.width() == mask.width() && out.height() == mask.height() && out.channels() == mask.channels(),
+            kBilateralOp,
             "the output must be a " + std::to_string(mask.channels()) + "-channel image of the mask's size (" +
                 size_text(mask) + ")");
     const bool aliased = out.plane(0) == mask.plane(0) || out.plane(0) == guide.plane(0) ||
                          (normals && out.plane(0) == normals->plane(0));
-    require(!aliased, kOp, "the output must not be the mask or a guide image (the filter reads its neighbours)");
+    require(!aliased, kBilateralOp,
+            "the output must not be the mask or a guide image (the filter reads its neighbours)");
 }
 
 BilateralParams make_params(pn_dims mask, int channels, pn_dims guide, const pn_dims* normals, pn_dims out,
@@ -102,9 +104,9 @@ BilateralParams make_params(pn_dims mask, int channels, pn_dims guide, const pn_
 // After a flagged run: names the first non-finite value, guide first.
 void report_non_finite(const Image& mask, const Image& guide, const Image* normals)
 {
-    require_finite(guide, kOp, "the guide depth");
-    if (normals) require_finite(*normals, kOp, "the guide normals");
-    require_finite(mask, kOp, "the mask");
+    require_finite(guide, kBilateralOp, "the guide depth");
+    if (normals) require_finite(*normals, kBilateralOp, "the guide normals");
+    require_finite(mask, kBilateralOp, "the mask");
 }
 
 // The window as the kernels read it: offsets (dx, dy), and per tap the
@@ -235,12 +237,13 @@ void cross_bilateral(Context& context, const Image& mask, const Image& guide_dep
 void cross_bilateral(Context& context, const ImageView& mask, const ImageView& guide_depth,
                      const BilateralOptions& options, const MutableImageView& out, const ImageView* guide_normals)
 {
-    const InputImage m(mask, kOp, "mask"), g(guide_depth, kOp, "guide-depth");
+    const InputImage m(mask, kBilateralOp, "mask"), g(guide_depth, kBilateralOp, "guide-depth");
     const std::optional<InputImage> n =
-        guide_normals ? std::optional<InputImage>(std::in_place, *guide_normals, kOp, "guide-normals") : std::nullopt;
-    OutputImage o(out, kOp, "out");
+        guide_normals ? std::optional<InputImage>(std::in_place, *guide_normals, kBilateralOp, "guide-normals")
+                      : std::nullopt;
+    OutputImage o(out, kBilateralOp, "out");
     for (const ImageView* input : {&mask, &guide_depth, guide_normals})
-        if (input) require_disjoint(*input, out, kOp, "out");
+        if (input) require_disjoint(*input, out, kBilateralOp, "out");
     cross_bilateral(context, m.image(), g.image(), options, o.image(), n ? &n->image() : nullptr);
     o.commit();
 }

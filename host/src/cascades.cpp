@@ -12,7 +12,7 @@
 namespace penumbra {
 namespace {
 
-const std::string kOp = "cascade-mask";
+const std::string kCascadeMaskOp = "cascade-mask";
 
 static_assert(kMaxCascades == PN_CASCADES_MAX && kCascadeReceiverChannels == PN_CASCADE_PLANES);
 
@@ -26,33 +26,33 @@ bool finite_frame(const CascadeFrame& f)
 void check_shadows(const CascadeShadows& s)
 {
     const int k = int(s.cascades.size());
-    require(k >= 1, kOp, "cascades", "no cascades: give 1 to " + std::to_string(kMaxCascades));
-    require(k <= kMaxCascades, kOp, "cascades",
+    require(k >= 1, kCascadeMaskOp, "cascades", "no cascades: give 1 to " + std::to_string(kMaxCascades));
+    require(k <= kMaxCascades, kCascadeMaskOp, "cascades",
             std::to_string(k) + " cascades given; at most " + std::to_string(kMaxCascades) +
                 " are supported (the kernel's parameter arrays)");
     for (int c = 0; c < k; ++c)
-        require(finite_frame(s.cascades[std::size_t(c)]), kOp, "cascades",
+        require(finite_frame(s.cascades[std::size_t(c)]), kCascadeMaskOp, "cascades",
                 "cascade " + std::to_string(c) + " has a non-finite or zero scale or offset");
-    require(s.maps.channels() == 1 && !s.maps.empty(), kOp, "maps",
+    require(s.maps.channels() == 1 && !s.maps.empty(), kCascadeMaskOp, "maps",
             "the maps must be one non-empty channel of stacked cascades");
-    require(s.maps.height() % k == 0, kOp, "maps",
+    require(s.maps.height() % k == 0, kCascadeMaskOp, "maps",
             "the maps' height " + std::to_string(s.maps.height()) + " is not a multiple of the " +
                 std::to_string(k) + " cascades (stack them, each W x H, cascade c in rows [c H, (c + 1) H))");
-    detail::check_shadow_map(s.maps, kOp);
+    detail::check_shadow_map(s.maps, kCascadeMaskOp);
 }
 
 void check_options(const CascadeOptions& o)
 {
-    check(kPcfGridRange, o.grid, kOp);
-    check(kPcfSigmaRange, o.sigma, kOp);
+    check(kPcfGridRange, o.grid, kCascadeMaskOp);
+    check(kPcfSigmaRange, o.sigma, kCascadeMaskOp);
     auto nonnegative = [](float v, const char* name) {
-        require(std::isfinite(v) && v >= 0, kOp, name,
+        require(std::isfinite(v) && v >= 0, kCascadeMaskOp, name,
                 std::string(name) + " must be a finite number of texels >= 0 (got " + std::to_string(v) + ")");
     };
     nonnegative(o.static_bias, "static-bias");
     nonnegative(o.bias_min, "bias-min");
     nonnegative(o.bias_max, "bias-max");
-    require(o.bias_min <= o.bias_max, kOp, "bias-min",
+    require(o.bias_min <= o.bias_max, kCascadeMaskOp, "bias-min",
             "bias-min " + std::to_string(o.bias_min) + " exceeds bias-max " + std::to_string(o.bias_max));
 }
 
@@ -97,18 +97,18 @@ void cascade_mask(Context& context, const CascadeShadows& shadows, const Image& 
 {
     check_shadows(shadows);
     check_options(options);
-    require(!receivers.empty() && receivers.channels() == kCascadeReceiverChannels, kOp, "receivers",
+    require(!receivers.empty() && receivers.channels() == kCascadeReceiverChannels, kCascadeMaskOp, "receivers",
             "the receivers must be a non-empty image of 5 channels (world x, y, z, view depth, surface flag), got " +
                 std::to_string(receivers.channels()));
-    require(out.channels() == 2 && out.width() == receivers.width() && out.height() == receivers.height(), kOp,
-            "out",
+    require(out.channels() == 2 && out.width() == receivers.width() && out.height() == receivers.height(),
+            kCascadeMaskOp, "out",
             "the output must be a 2-channel image (visibility, cascade) of the receivers' size (" +
                 std::to_string(receivers.width()) + "x" + std::to_string(receivers.height()) + ")");
     CascadeParams p = cascade_params(shadows, options);
     p.maps = detail::dims_of(shadows.maps);
     p.receivers = detail::dims_of(receivers);
     p.out = detail::dims_of(out);
-    detail::checked_lookup(kOp, receivers, [&](int* bad_rows) {
+    detail::checked_lookup(kCascadeMaskOp, receivers, [&](int* bad_rows) {
         detail::receiver_lookup<detail::KernelId::cascade_mask>(context.impl(), shadows.maps, receivers, p, out,
                                                                 bad_rows);
     });

@@ -31,18 +31,19 @@
 #include "exr_core.h"
 #include "exr_streams.h"
 #include "exr_validate.h"
+#include "quoted.h"
 
 namespace penumbra {
 namespace {
 
 constexpr std::string_view kAdvice = "; the file may be truncated or corrupt, re-create it";
-constexpr int kScanlineBand = 64;
+using detail::kScanlineBand;
 
-std::string quoted(const std::string& text) { return "'" + text + "'"; }
+using detail::in_quotes;
 
 [[noreturn]] void refuse(const detail::DeepFileKind& kind, const std::string& path, const std::string& what)
 {
-    throw Error(ErrorCategory::Io, kind.operation, quoted(path) + " " + what);
+    throw Error(ErrorCategory::Io, kind.operation, in_quotes(path) + " " + what);
 }
 
 // One chunk's pixels (relative to the data window) and the decoded bytes it declares.
@@ -71,9 +72,9 @@ void inspect_id_channel(const exr_attr_chlist_entry_t& e, const detail::DeepFile
 {
     const std::string name(kind.id_channel);
     if (e.x_sampling != 1 || e.y_sampling != 1)
-        refuse(kind, path, "has a subsampled channel " + quoted(name) + "; its ids are one a sample");
+        refuse(kind, path, "has a subsampled channel " + in_quotes(name) + "; its ids are one a sample");
     if (e.pixel_type != EXR_PIXEL_UINT)
-        refuse(kind, path, "stores channel " + quoted(name) + " as " +
+        refuse(kind, path, "stores channel " + in_quotes(name) + " as " +
                                (e.pixel_type == EXR_PIXEL_HALF ? "HALF" : "FLOAT") +
                                "; its ids are UINT, exact integers (" + std::string(kind.writer) + " writes them so)");
 }
@@ -97,9 +98,11 @@ void inspect_channels(const detail::CoreContext& core, const detail::DeepFileKin
         const bool ours = name == "Z" || name == "ZBack" || name == "A" || name == kDeepTransmittanceChannel;
         if (!ours) continue;
         if (e.x_sampling != 1 || e.y_sampling != 1)
-            refuse(kind, path, "has a subsampled channel " + quoted(name) + "; a deep map's channels are full resolution");
+            refuse(kind, path,
+                   "has a subsampled channel " + in_quotes(name) + "; a deep map's channels are full resolution");
         if (e.pixel_type == EXR_PIXEL_UINT)
-            refuse(kind, path, "stores channel " + quoted(name) + " as UINT; depths and opacities are FLOAT (or HALF)");
+            refuse(kind, path,
+                   "stores channel " + in_quotes(name) + " as UINT; depths and opacities are FLOAT (or HALF)");
         has_z |= name == "Z", layout.has_a |= name == "A" && kind.needs_opacity;
         layout.has_zback |= name == "ZBack", layout.has_t |= name == kDeepTransmittanceChannel;
     }

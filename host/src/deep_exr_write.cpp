@@ -22,8 +22,8 @@
 namespace penumbra {
 namespace {
 
-constexpr std::string_view kOperation = "write_deep_exr";
-constexpr int kScanlineBand = 64;  // rows per frame buffer (ZIPS chunks are one line)
+constexpr std::string_view kWriteDeepOp = "write_deep_exr";
+using detail::kScanlineBand;
 
 // Per-sample opacity A_k = 1 - t_{k+1}/t_k, at the index of the sample's first
 // vertex (so one array serves every pixel with the offsets of the map).
@@ -150,7 +150,7 @@ void write_deep_pixels(const std::string& temporary, const DeepShadowMap& map, c
 
 void write_deep_exr(const std::string& path, const DeepShadowMap& map, const DeepExrWriteOptions& options)
 {
-    OutputFiles output{std::string(kOperation)};
+    OutputFiles output{std::string(kWriteDeepOp)};
     stage_deep_exr(output, path, map, options);
     output.publish();
 }
@@ -158,15 +158,15 @@ void write_deep_exr(const std::string& path, const DeepShadowMap& map, const Dee
 void stage_deep_exr(OutputFiles& output, const std::string& path, const DeepShadowMap& map,
                     const DeepExrWriteOptions& options)
 {
-    require(map.width() >= 1 && map.height() >= 1, kOperation, "map",
+    require(map.width() >= 1 && map.height() >= 1, kWriteDeepOp, "map",
             "the map for '" + path + "' is empty; a deep EXR file needs at least one pixel");
     // 2048^2 = 2^22 pixels: the largest tile the reader takes for any image
     // (check_declared_sizes allows the image's pixels plus 2^22).
-    require(options.tile_size >= 1 && options.tile_size <= 2048, kOperation, "tile_size",
+    require(options.tile_size >= 1 && options.tile_size <= 2048, kWriteDeepOp, "tile_size",
             "must be in [1, 2048], not " + std::to_string(options.tile_size));
-    require_safe_outputs({path}, {}, kOperation);
+    require_safe_outputs({path}, {}, kWriteDeepOp);
     output.stage(path, [&](const std::string& temporary) {
-        detail::translating_exr_exceptions(kOperation, path, "; check free disk space and write permission",
+        detail::translating_exr_exceptions(kWriteDeepOp, path, "; check free disk space and write permission",
                                            [&] { write_deep_pixels(temporary, map, options); });
     });
 }

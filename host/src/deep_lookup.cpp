@@ -16,7 +16,7 @@
 namespace penumbra {
 namespace {
 
-const std::string kOperation = "dsm";
+const std::string kDsmOp = "dsm";
 
 // The kernel's bisection adds a step to an index below the vertex count;
 // both stay below 2^31 (signed gather indices) under this bound.
@@ -66,23 +66,23 @@ DsmParams params_of(const DeepShadowMap& map, const Image& receivers, const Deep
 void deep_lookup(Context& context, const DeepShadowMap& map, const Image& receivers, const DeepLookupOptions& o,
                  Image& out)
 {
-    check(kDeepRadiusRange, o.radius, kOperation);
-    check(kDepthBiasRange, o.bias, kOperation);
-    require(map.width() >= 1 && map.height() >= 1, kOperation, "deep-map", "the deep shadow map is empty (0 pixels)");
-    require(std::size_t(map.width()) * std::size_t(map.height()) < kMaxLookupVertices, kOperation, "deep-map",
+    check(kDeepRadiusRange, o.radius, kDsmOp);
+    check(kDepthBiasRange, o.bias, kDsmOp);
+    require(map.width() >= 1 && map.height() >= 1, kDsmOp, "deep-map", "the deep shadow map is empty (0 pixels)");
+    require(std::size_t(map.width()) * std::size_t(map.height()) < kMaxLookupVertices, kDsmOp, "deep-map",
             "a lookup indexes fewer than 2^30 pixels; use a smaller map");
-    require(map.vertex_count() < kMaxLookupVertices, kOperation, "deep-map",
+    require(map.vertex_count() < kMaxLookupVertices, kDsmOp, "deep-map",
             "the map holds " + std::to_string(map.vertex_count()) +
                 " vertices; a lookup indexes fewer than 2^30 (compress it with a larger tolerance, or split it)");
-    require(receivers.channels() >= 3 && !receivers.empty(), kOperation, "receivers",
+    require(receivers.channels() >= 3 && !receivers.empty(), kDsmOp, "receivers",
             "the receivers need channels u, v, z (got " + std::to_string(receivers.channels()) + " channels, " +
                 std::to_string(receivers.width()) + "x" + std::to_string(receivers.height()) + ")");
-    require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), kOperation,
+    require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), kDsmOp,
             "the output must be a 1-channel image of the receivers' size (" + std::to_string(receivers.width()) +
                 "x" + std::to_string(receivers.height()) + ")");
     const DsmParams p = params_of(map, receivers, o, out);
     const detail::LookupSource source = source_of(map);
-    detail::checked_lookup(kOperation, receivers, [&](int* bad_rows) {
+    detail::checked_lookup(kDsmOp, receivers, [&](int* bad_rows) {
         detail::receiver_lookup<detail::KernelId::dsm_lookup>(context.impl(), source, receivers, p, out, bad_rows);
     });
 }

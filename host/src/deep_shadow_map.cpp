@@ -13,11 +13,11 @@
 namespace penumbra {
 namespace {
 
-constexpr std::string_view kOperation = "deep_shadow_map";
+constexpr std::string_view kDeepMapOp = "deep_shadow_map";
 
 [[noreturn]] void bad_vertex(int x, int y, std::size_t vertex, int channel, float value, const std::string& what)
 {
-    throw Error(ErrorCategory::InvalidData, kOperation, channel == 0 ? "depths" : "transmittances",
+    throw Error(ErrorCategory::InvalidData, kDeepMapOp, channel == 0 ? "depths" : "transmittances",
                 "pixel (" + std::to_string(x) + ", " + std::to_string(y) + "), vertex " + std::to_string(vertex) +
                     ": " + what,
                 BadPixel{channel, x, y, value});
@@ -27,7 +27,7 @@ constexpr std::string_view kOperation = "deep_shadow_map";
 
 void require_visibility_function(std::span<const float> z, std::span<const float> t, int x, int y)
 {
-    require(z.size() == t.size(), kOperation, "transmittances",
+    require(z.size() == t.size(), kDeepMapOp, "transmittances",
             "one transmittance per depth: " + std::to_string(z.size()) + " depths, " + std::to_string(t.size()) +
                 " transmittances");
     const std::size_t n = z.size();
@@ -54,23 +54,23 @@ DeepShadowMap::DeepShadowMap(int width, int height, std::vector<std::uint32_t> o
     : width_(width), height_(height), offsets_(std::move(offsets)), depths_(std::move(depths)),
       transmittances_(std::move(transmittances))
 {
-    require(width >= 1 && height >= 1, kOperation, "size",
+    require(width >= 1 && height >= 1, kDeepMapOp, "size",
             "a deep shadow map needs at least one pixel, not " + std::to_string(width) + "x" + std::to_string(height));
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    require(offsets_.size() == pixels + 1, kOperation, "offsets",
+    require(offsets_.size() == pixels + 1, kDeepMapOp, "offsets",
             "needs width*height + 1 = " + std::to_string(pixels + 1) + " entries, not " +
                 std::to_string(offsets_.size()));
-    require(depths_.size() == transmittances_.size(), kOperation, "transmittances",
+    require(depths_.size() == transmittances_.size(), kDeepMapOp, "transmittances",
             "one transmittance per depth: " + std::to_string(depths_.size()) + " depths, " +
                 std::to_string(transmittances_.size()) + " transmittances");
-    require(depths_.size() <= std::numeric_limits<std::uint32_t>::max(), kOperation, "depths",
+    require(depths_.size() <= std::numeric_limits<std::uint32_t>::max(), kDeepMapOp, "depths",
             "at most 2^32 - 1 vertices can be indexed by 32-bit offsets");
-    require(offsets_.front() == 0 && offsets_.back() == depths_.size(), kOperation, "offsets",
+    require(offsets_.front() == 0 && offsets_.back() == depths_.size(), kDeepMapOp, "offsets",
             "must start at 0 and end at the vertex count " + std::to_string(depths_.size()));
     // Every offset is checked before any pixel's vertices are read: with
     // {0, 5, 2} over 2 vertices, pixel 0 would otherwise read 5.
     for (std::size_t p = 0; p < pixels; ++p)
-        require(offsets_[p] <= offsets_[p + 1], kOperation, "offsets",
+        require(offsets_[p] <= offsets_[p + 1], kDeepMapOp, "offsets",
                 "decrease at pixel " + std::to_string(p) + "; they must be non-decreasing");
     for (std::size_t p = 0; p < pixels; ++p) {
         const int x = int(p % std::size_t(width)), y = int(p / std::size_t(width));
@@ -114,19 +114,19 @@ float deep_visibility(std::span<const float> depths, std::span<const float> tran
 
 DeepShadowMapBuilder::DeepShadowMapBuilder(int width, int height) : width_(width), height_(height)
 {
-    require(width >= 1 && height >= 1, kOperation, "size",
+    require(width >= 1 && height >= 1, kDeepMapOp, "size",
             "a deep shadow map needs at least one pixel, not " + std::to_string(width) + "x" + std::to_string(height));
     offsets_.reserve(std::size_t(width) * std::size_t(height) + 1);
 }
 
 void DeepShadowMapBuilder::add_pixel(std::span<const float> depths, std::span<const float> transmittances)
 {
-    require(depths.size() == transmittances.size(), kOperation, "transmittances",
+    require(depths.size() == transmittances.size(), kDeepMapOp, "transmittances",
             "one transmittance per depth: " + std::to_string(depths.size()) + " depths, " +
                 std::to_string(transmittances.size()) + " transmittances");
-    require(offsets_.size() <= std::size_t(width_) * std::size_t(height_), kOperation,
+    require(offsets_.size() <= std::size_t(width_) * std::size_t(height_), kDeepMapOp,
             "every pixel has been added already");
-    require(depths_.size() + depths.size() <= std::numeric_limits<std::uint32_t>::max(), kOperation, "depths",
+    require(depths_.size() + depths.size() <= std::numeric_limits<std::uint32_t>::max(), kDeepMapOp, "depths",
             "at most 2^32 - 1 vertices can be indexed by 32-bit offsets");
     depths_.insert(depths_.end(), depths.begin(), depths.end());
     transmittances_.insert(transmittances_.end(), transmittances.begin(), transmittances.end());
@@ -136,7 +136,7 @@ void DeepShadowMapBuilder::add_pixel(std::span<const float> depths, std::span<co
 DeepShadowMap DeepShadowMapBuilder::build()
 {
     const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
-    require(offsets_.size() == pixels + 1, kOperation,
+    require(offsets_.size() == pixels + 1, kDeepMapOp,
             std::to_string(offsets_.size() - 1) + " of " + std::to_string(pixels) +
                 " pixels were added; add every pixel before building");
     DeepShadowMap map(width_, height_, std::exchange(offsets_, {0}), std::exchange(depths_, {}),

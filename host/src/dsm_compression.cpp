@@ -136,11 +136,11 @@ private:
     double slope_lo_ = 0.0, slope_hi_ = 0.0;
 };
 
-constexpr std::string_view kOperation = "compress_visibility";
+constexpr std::string_view kCompressOp = "compress_visibility";
 
 void require_tolerance(float tolerance)
 {
-    require(std::isfinite(tolerance) && tolerance >= 0.0f, kOperation, "tolerance",
+    require(std::isfinite(tolerance) && tolerance >= 0.0f, kCompressOp, "tolerance",
             "must be finite and >= 0, not " + std::to_string(tolerance));
 }
 

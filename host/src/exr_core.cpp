@@ -1,12 +1,11 @@
 // The OpenEXR core library over an InputFile (exr_core.h).
 #include "exr_core.h"
+#include "quoted.h"
 
 #include <algorithm>
 
 namespace penumbra::detail {
 namespace {
-
-std::string in_quotes(const std::string& text) { return "'" + text + "'"; }
 
 void record_error(exr_const_context_t ctxt, exr_result_t, const char* message)
 {

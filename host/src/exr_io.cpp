@@ -36,6 +36,7 @@
 #include "penumbra/error.h"
 #include "penumbra/input_file.h"
 #include "penumbra/output_files.h"
+#include "quoted.h"
 
 namespace penumbra {
 namespace {
@@ -50,7 +51,7 @@ namespace fs = std::filesystem;
 constexpr std::string_view kReadAdvice = "; the file may be truncated or corrupt, re-create it";
 constexpr std::string_view kWriteAdvice = "; check free disk space and write permission";
 
-std::string quoted(const std::string& text) { return "'" + text + "'"; }
+using detail::in_quotes;
 
 [[noreturn]] void throw_io(std::string_view operation, const std::string& message)
 {
@@ -61,7 +62,7 @@ std::string joined(const std::vector<std::string>& names)
 {
     if (names.empty()) return "(none)";
     std::string text;
-    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + quoted(name);
+    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + in_quotes(name);
     return text;
 }
 
@@ -74,7 +75,7 @@ void require_distinct_names(const std::vector<std::string>& channels, std::strin
     for (const std::string& name : channels) {
         require(!name.empty(), operation, "a channel name is empty; EXR channels need a name");
         require(seen.insert(name).second, operation,
-                "channel " + quoted(name) + " is named twice; name each channel once");
+                "channel " + in_quotes(name) + " is named twice; name each channel once");
     }
 }
 
@@ -96,7 +97,7 @@ OpenExr open_exr(const std::string& path, std::string_view operation, const ExrR
     OpenExr exr{open_input_file(path, operation), nullptr, nullptr};
     char magic[4] = {};
     if (!exr.file.read_at(0, magic, sizeof magic) || !Imf::isImfMagic(magic))
-        throw_io(operation, quoted(path) + " is not an OpenEXR file (it lacks the EXR magic number); "
+        throw_io(operation, in_quotes(path) + " is not an OpenEXR file (it lacks the EXR magic number); "
                                            "convert it to .exr first");
     detail::validate_exr(exr.file, limits, operation, chunks);
     exr.stream = std::make_unique<DescriptorInputStream>(exr.file);
@@ -119,13 +120,13 @@ void require_channels_present(const Imf::Header& header, const std::vector<std::
     for (const std::string& name : channels) {
         const Imf::Channel* channel = header.channels().findChannel(name);
         if (!channel)
-            throw_io(operation, quoted(path) + " has no channel " + quoted(name) + "; its channels are " +
+            throw_io(operation, in_quotes(path) + " has no channel " + in_quotes(name) + "; its channels are " +
                                     joined(channel_names(header)));
         // Reading a subsampled channel into a full-resolution plane would need
         // an upsampling policy; refusing is clearer than inventing one.
         if (channel->xSampling != 1 || channel->ySampling != 1)
             throw_io(operation,
-                     "channel " + quoted(name) + " of " + quoted(path) + " is subsampled (" +
+                     "channel " + in_quotes(name) + " of " + in_quotes(path) + " is subsampled (" +
                          std::to_string(channel->xSampling) + "x" + std::to_string(channel->ySampling) +
                          "); only full-resolution channels can be read, re-export it unsubsampled");
     }
@@ -144,10 +145,10 @@ Extent data_window_extent(const Imath::Box2i& window, const std::string& path, s
     corners << '(' << window.min.x << ", " << window.min.y << ")..(" << window.max.x << ", " << window.max.y
             << ')';
     if (width <= 0 || height <= 0)
-        throw_io(operation, quoted(path) + " has an empty data window " + corners.str() +
+        throw_io(operation, in_quotes(path) + " has an empty data window " + corners.str() +
                                 ": it holds no pixels; re-export it with at least one pixel");
     if (width > INT_MAX || height > INT_MAX)
-        throw_io(operation, quoted(path) + " has a data window too large to read " + corners.str());
+        throw_io(operation, in_quotes(path) + " has a data window too large to read " + corners.str());
     return {int(width), int(height)};
 }
 
@@ -230,7 +231,8 @@ Image read_exr(const std::string& path, const std::vector<std::string>& channels
     const Imath::Box2i window = file->header().dataWindow();
     const Extent extent = data_window_extent(window, path, operation);
     if (!file->isComplete())
-        throw_io(operation, quoted(path) + " is incomplete: its table of chunk offsets lacks some scanlines or tiles" +
+        throw_io(operation, in_quotes(path) +
+                                " is incomplete: its table of chunk offsets lacks some scanlines or tiles" +
                                 std::string(kReadAdvice));
 
     // Uninitialised: every pixel is decoded or the read throws (decode_exr
@@ -264,9 +266,9 @@ void stage_exr(OutputFiles& output, const std::string& path, const Image& image,
     require(int(channels.size()) == image.channels(), operation,
             "the image has " + std::to_string(image.channels()) + " channels but " +
                 std::to_string(channels.size()) + (channels.size() == 1 ? " name was" : " names were") +
-                " given for " + quoted(path) + "; give one name per channel");
+                " given for " + in_quotes(path) + "; give one name per channel");
     require(!image.empty(), operation,
-            "the image for " + quoted(path) + " is empty (" + std::to_string(image.width()) + "x" +
+            "the image for " + in_quotes(path) + " is empty (" + std::to_string(image.width()) + "x" +
                 std::to_string(image.height()) + "); an EXR file needs at least one pixel");
     require_safe_outputs({path}, {}, operation);
     output.stage(path, [&](const std::string& temporary) {

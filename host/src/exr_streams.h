@@ -126,4 +126,8 @@ private:
 // mask, e.g. under taskset), not every CPU of the machine.
 void use_hardware_threads_for_exr();
 
+// Rows per frame buffer where a scanline file is read or written in bands:
+// the buffers stay small, and ZIPS chunks are one line, so any band fits.
+inline constexpr int kScanlineBand = 64;
+
 }  // namespace penumbra::detail

@@ -18,11 +18,10 @@
 #include <string>
 
 #include "penumbra/error.h"
+#include "quoted.h"
 
 namespace penumbra::detail {
 namespace {
-
-std::string in_quotes(const std::string& text) { return "'" + text + "'"; }
 
 // A name read from a damaged header, fit for a one-line message.
 std::string printable(std::string text)

@@ -10,11 +10,12 @@
 #include <utility>
 
 #include "penumbra/error.h"
+#include "quoted.h"
 
 namespace penumbra {
 namespace {
 
-std::string in_quotes(const std::string& text) { return "'" + text + "'"; }
+using detail::in_quotes;
 
 [[noreturn]] void refuse(std::string_view operation, const std::string& path, const std::string& why)
 {

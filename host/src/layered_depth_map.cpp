@@ -13,7 +13,7 @@
 namespace penumbra {
 namespace {
 
-constexpr std::string_view kOperation = "layered_depth_map";
+constexpr std::string_view kLayeredMapOp = "layered_depth_map";
 
 double dot3(const std::array<double, 3>& a, const std::array<double, 3>& b)
 {
@@ -23,8 +23,8 @@ double dot3(const std::array<double, 3>& a, const std::array<double, 3>& b)
 void require_camera(const MapCamera& cam)
 {
     for (double v : {cam.position[0], cam.position[1], cam.position[2], cam.tan_half_fov})
-        require(std::isfinite(v), kOperation, "camera", "the camera's position and field of view must be finite");
-    require(cam.tan_half_fov > 0, kOperation, "camera", "the field of view must be in (0, 180) degrees");
+        require(std::isfinite(v), kLayeredMapOp, "camera", "the camera's position and field of view must be finite");
+    require(cam.tan_half_fov > 0, kLayeredMapOp, "camera", "the field of view must be in (0, 180) degrees");
     constexpr double kTolerance = 1e-9;
     const auto unit = [&](const std::array<double, 3>& a) { return std::fabs(dot3(a, a) - 1) <= kTolerance; };
     const auto orthogonal = [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
@@ -34,12 +34,12 @@ void require_camera(const MapCamera& cam)
     const std::array<double, 3> r_x_d{r[1] * d[2] - r[2] * d[1], r[2] * d[0] - r[0] * d[2], r[0] * d[1] - r[1] * d[0]};
     require(unit(r) && unit(d) && unit(f) && orthogonal(r, d) && orthogonal(r, f) && orthogonal(d, f) &&
                 dot3(r_x_d, f) > 0,
-            kOperation, "camera", "right, down and forward must be a right-handed orthonormal frame");
+            kLayeredMapOp, "camera", "right, down and forward must be a right-handed orthonormal frame");
 }
 
 [[noreturn]] void bad_depth(int x, int y, std::size_t layer, float value, const std::string& what)
 {
-    throw Error(ErrorCategory::InvalidData, kOperation, "depths",
+    throw Error(ErrorCategory::InvalidData, kLayeredMapOp, "depths",
                 "pixel (" + std::to_string(x) + ", " + std::to_string(y) + "), layer " + std::to_string(layer) +
                     ": " + what,
                 BadPixel{0, x, y, value});
@@ -128,20 +128,20 @@ LayeredDepthMap::LayeredDepthMap(int width, int height, MapCamera camera, std::v
                                  std::vector<float> depths)
     : width_(width), height_(height), camera_(camera), offsets_(std::move(offsets)), depths_(std::move(depths))
 {
-    require(width >= 1 && height >= 1, kOperation, "size",
+    require(width >= 1 && height >= 1, kLayeredMapOp, "size",
             "a layered depth map needs at least one pixel, not " + std::to_string(width) + "x" +
                 std::to_string(height));
     require_camera(camera_);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    require(offsets_.size() == pixels + 1, kOperation, "offsets",
+    require(offsets_.size() == pixels + 1, kLayeredMapOp, "offsets",
             "the offsets need width*height + 1 = " + std::to_string(pixels + 1) + " entries, not " +
                 std::to_string(offsets_.size()));
-    require(depths_.size() <= std::numeric_limits<std::uint32_t>::max(), kOperation, "depths",
+    require(depths_.size() <= std::numeric_limits<std::uint32_t>::max(), kLayeredMapOp, "depths",
             "at most 2^32 - 1 depths can be indexed by 32-bit offsets");
-    require(offsets_.front() == 0 && offsets_.back() == depths_.size(), kOperation, "offsets",
+    require(offsets_.front() == 0 && offsets_.back() == depths_.size(), kLayeredMapOp, "offsets",
             "the offsets must start at 0 and end at the depth count " + std::to_string(depths_.size()));
     for (std::size_t p = 0; p < pixels; ++p)  // all checked before any pixel is read
-        require(offsets_[p] <= offsets_[p + 1], kOperation, "offsets",
+        require(offsets_[p] <= offsets_[p + 1], kLayeredMapOp, "offsets",
                 "the offsets decrease at pixel " + std::to_string(p) + "; they must be non-decreasing");
     for (std::size_t p = 0; p < pixels; ++p)
         require_layers(layers(int(p % std::size_t(width)), int(p / std::size_t(width))), int(p % std::size_t(width)),
@@ -188,7 +188,7 @@ LayeredDepthMap maximum_depth_map(const LayeredDepthMap& map)
 LayeredDepthMapBuilder::LayeredDepthMapBuilder(int width, int height, MapCamera camera)
     : width_(width), height_(height), camera_(camera)
 {
-    require(width >= 1 && height >= 1, kOperation, "size",
+    require(width >= 1 && height >= 1, kLayeredMapOp, "size",
             "a layered depth map needs at least one pixel, not " + std::to_string(width) + "x" +
                 std::to_string(height));
     offsets_.reserve(std::size_t(width) * std::size_t(height) + 1);
@@ -196,7 +196,7 @@ LayeredDepthMapBuilder::LayeredDepthMapBuilder(int width, int height, MapCamera 
 
 void LayeredDepthMapBuilder::add_pixel(std::span<const float> depths)
 {
-    require(offsets_.size() <= std::size_t(width_) * std::size_t(height_), kOperation, "pixels",
+    require(offsets_.size() <= std::size_t(width_) * std::size_t(height_), kLayeredMapOp, "pixels",
             "every pixel has been added");
     depths_.insert(depths_.end(), depths.begin(), depths.end());
     offsets_.push_back(std::uint32_t(depths_.size()));
@@ -204,7 +204,7 @@ void LayeredDepthMapBuilder::add_pixel(std::span<const float> depths)
 
 LayeredDepthMap LayeredDepthMapBuilder::build()
 {
-    require(offsets_.size() == std::size_t(width_) * std::size_t(height_) + 1, kOperation, "pixels",
+    require(offsets_.size() == std::size_t(width_) * std::size_t(height_) + 1, kLayeredMapOp, "pixels",
             "only " + std::to_string(offsets_.size() - 1) + " of " +
                 std::to_string(std::size_t(width_) * std::size_t(height_)) + " pixels were added");
     LayeredDepthMap map(width_, height_, camera_, std::move(offsets_), std::move(depths_));

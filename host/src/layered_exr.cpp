@@ -30,7 +30,7 @@ constexpr std::string_view kWrite = "write_layered_exr";
 constexpr detail::DeepFileKind kLayeredFile{"read_layered_exr", "a layered depth map", "penumbra pismo-build", false};
 constexpr detail::DeepFileKind kLayeredFileWithIds{"read_layered_exr", "a layered depth map", "penumbra pismo-build",
                                                    false, kLayeredSurfaceChannel};
-constexpr int kScanlineBand = 64;  // rows per frame buffer (ZIPS chunks are one line)
+using detail::kScanlineBand;
 
 // The camera's attributes, in MapCamera's order.
 constexpr const char* kAxes[4] = {"penumbra.cameraPosition", "penumbra.cameraRight", "penumbra.cameraDown",

@@ -20,13 +20,14 @@
 
 #include "penumbra/error.h"
 #include "penumbra/input_file.h"  // file_type_name
+#include "quoted.h"
 
 namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string in_quotes(const std::string& text) { return "'" + text + "'"; }
+using detail::in_quotes;
 std::string errno_text(int code) { return std::generic_category().message(code); }
 
 [[noreturn]] void throw_io(std::string_view operation, const std::string& message)
@@ -70,6 +71,12 @@ void install_cleanup_handlers()
     });
 }
 
+}  // namespace
+
+// In detail, not the anonymous namespace: OutputFiles::Staged, a class of the
+// public API, holds one.
+namespace detail {
+
 // Lists a name for the handler; unlisted when destroyed.
 class NamedTemporary {
 public:
@@ -111,6 +118,10 @@ private:
     std::string name_;
     std::atomic<const char*>* slot_ = nullptr;
 };
+
+}  // namespace detail
+
+namespace {
 
 // ".NAME.penumbra-tmp-PID-N": hidden, named after the target so that a stray
 // one says what it was, and distinctive, so that the stale-temporary sweep
@@ -231,7 +242,7 @@ struct OutputFiles::Staged {
     std::string target;
     int fd = -1;              // the temporary, open and flock()ed until published or removed
     bool unnamed = false;     // O_TMPFILE (written through /proc/self/fd), else the named fallback
-    NamedTemporary named;     // the fallback's file, or the linked name before rename
+    detail::NamedTemporary named;  // the fallback's file, or the linked name before rename
     ~Staged()
     {
         named.remove();  // while still locked, so that no sweep races the unlink
@@ -276,7 +287,7 @@ bool unnamed_unsupported(int error) { return error == EOPNOTSUPP || error == EIS
 // The fallback's named temporary, returned open and locked. Between creating
 // it and locking it a sweep may find it unlocked and remove it: so once locked,
 // the name must still lead to it, or another name is tried.
-int create_named_beside(const fs::path& target, std::string_view operation, NamedTemporary& named)
+int create_named_beside(const fs::path& target, std::string_view operation, detail::NamedTemporary& named)
 {
     for (int attempt = 0; attempt < 100; ++attempt) {
         named.assign(hidden_name_beside(target));

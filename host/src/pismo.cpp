@@ -19,12 +19,12 @@
 namespace penumbra {
 namespace {
 
-const std::string kOperation = "pismo";
+const std::string kPismoOp = "pismo";
 
 // Pixel and depth indices are int in the kernel.
 constexpr std::size_t kMaxIndex = (std::size_t(1) << 31) - 1;
 
-void require_maps(bool condition, const std::string& message) { require(condition, kOperation, "maps", message); }
+void require_maps(bool condition, const std::string& message) { require(condition, kPismoOp, "maps", message); }
 
 double distance(const std::array<double, 3>& a, const std::array<double, 3>& b)
 {
@@ -76,12 +76,12 @@ void check_maps(const std::vector<std::array<double, 3>>& vertices, const std::v
 void check_receivers(const Image& receivers, const Image& out)
 {
     const int channels = receivers.channels();
-    require((channels == 3 || channels == 6 || channels == 7) && !receivers.empty(), kOperation, "receivers",
+    require((channels == 3 || channels == 6 || channels == 7) && !receivers.empty(), kPismoOp, "receivers",
             "the receivers need channels x, y, z, world positions, and optionally then the normal's x, y, z and "
             "then the surface id (got " +
                 std::to_string(receivers.channels()) +
                 " channels, " + std::to_string(receivers.width()) + "x" + std::to_string(receivers.height()) + ")");
-    require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), kOperation,
+    require(out.channels() == 1 && out.width() == receivers.width() && out.height() == receivers.height(), kPismoOp,
             "out",
             "the output must be a 1-channel image of the receivers' size (" + std::to_string(receivers.width()) + "x" +
                 std::to_string(receivers.height()) + ")");
@@ -97,7 +97,7 @@ void check_receiver_ids(const Image& receivers)
         for (int x = 0; x < receivers.width(); ++x) {
             const float id = receivers.at(6, x, y);
             if (id == -1.0f || (id >= 0.0f && id <= float(kPismoMaxSurfaceId) && id == std::floor(id))) continue;
-            throw Error(ErrorCategory::InvalidData, kOperation, "receivers",
+            throw Error(ErrorCategory::InvalidData, kPismoOp, "receivers",
                         "the surface id at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " +
                             std::to_string(id) + "; an id is -1 (unknown) or an integer in [0, " +
                             std::to_string(kPismoMaxSurfaceId) + "]",
@@ -112,7 +112,7 @@ void check_surface_ids(const std::vector<LayeredDepthMap>& maps, PismoDepths dep
 {
     if (ids.empty()) return;
     const auto refuse_unless = [](bool condition, const std::string& message) {
-        require(condition, kOperation, "surface-ids", message);
+        require(condition, kPismoOp, "surface-ids", message);
     };
     refuse_unless(depths == PismoDepths::Layered,
                   "the maximum-depth maps keep one depth a pixel, no surface's crossing: give no surface ids");
@@ -268,7 +268,7 @@ void detail::pismo_shade_rays(Context& context, const PismoMaps& maps, PismoRayT
         shade_chunk(context.impl(), s, chunk, shaded, bad_rows.data());
         // The report names the pixel in the caller's rows, on the planes read.
         if (std::find(bad_rows.begin(), bad_rows.end(), 1) != bad_rows.end())
-            require_finite(receiver_rows(receivers, 0, receivers.height()), kOperation, "the receivers image",
+            require_finite(receiver_rows(receivers, 0, receivers.height()), kPismoOp, "the receivers image",
                            "receivers");
         for (int y = 0; y < n; ++y)
             std::memcpy(out.row(0, y0 + y), shaded.row(0, y), sizeof(float) * std::size_t(receivers.width()));
@@ -277,8 +277,8 @@ void detail::pismo_shade_rays(Context& context, const PismoMaps& maps, PismoRayT
 
 void pismo_shade(Context& context, const PismoMaps& maps, const Image& receivers, const PismoOptions& o, Image& out)
 {
-    check(kPismoRaysRange, o.rays, kOperation);
-    check(kPismoBiasRange, o.bias_texels, kOperation);
+    check(kPismoRaysRange, o.rays, kPismoOp);
+    check(kPismoBiasRange, o.bias_texels, kPismoOp);
     detail::pismo_shade_rays(context, maps, detail::pismo_ray_table(maps.vertices(), maps.triangles(), o.rays),
                              o.bias_texels, receivers, out);
 }

@@ -13,7 +13,7 @@
 namespace penumbra {
 namespace {
 
-const std::string kOp = "sdf_shadows";
+const std::string kSdfOp = "sdf_shadows";
 
 std::string str(double v) { return std::to_string(v); }
 
@@ -21,36 +21,38 @@ double length(SdfVec3 v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); 
 
 void check_options(const SdfOptions& o)
 {
-    require(std::isfinite(o.k) && o.k > 0.0f, kOp, "k must be a finite value > 0 (got " + str(o.k) + ")");
-    require(std::isfinite(o.t_min) && o.t_min >= 0.0f, kOp, "t_min must be a finite value >= 0 (got " + str(o.t_min) + ")");
-    require(std::isfinite(o.t_max) && o.t_max > o.t_min, kOp,
+    require(std::isfinite(o.k) && o.k > 0.0f, kSdfOp, "k must be a finite value > 0 (got " + str(o.k) + ")");
+    require(std::isfinite(o.t_min) && o.t_min >= 0.0f, kSdfOp,
+            "t_min must be a finite value >= 0 (got " + str(o.t_min) + ")");
+    require(std::isfinite(o.t_max) && o.t_max > o.t_min, kSdfOp,
             "t_max must be finite and > t_min (got t_max " + str(o.t_max) + ", t_min " + str(o.t_min) + ")");
-    require(o.max_steps >= 1 && o.max_steps <= 1000000, kOp,
+    require(o.max_steps >= 1 && o.max_steps <= 1000000, kSdfOp,
             "max_steps must be in [1, 1000000] (got " + std::to_string(o.max_steps) + ")");
-    require(std::isfinite(o.hit_epsilon) && o.hit_epsilon > 0.0f, kOp,
+    require(std::isfinite(o.hit_epsilon) && o.hit_epsilon > 0.0f, kSdfOp,
             "hit_epsilon must be a finite value > 0 (got " + str(o.hit_epsilon) + ")");
-    require(std::isfinite(o.normal_offset) && o.normal_offset >= 0.0f, kOp,
+    require(std::isfinite(o.normal_offset) && o.normal_offset >= 0.0f, kSdfOp,
             "normal_offset must be a finite value >= 0 (got " + str(o.normal_offset) + ")");
-    require(std::isfinite(o.light_width) && o.light_width >= 0.0f, kOp,
+    require(std::isfinite(o.light_width) && o.light_width >= 0.0f, kSdfOp,
             "light_width must be a finite value >= 0 (got " + str(o.light_width) + ")");
-    require(o.light_width == 0.0f || !o.light.directional, kOp,
+    require(o.light_width == 0.0f || !o.light.directional, kSdfOp,
             "light_width applies to a light at a point (SdfLight::at); give a directional light an absolute k");
     const SdfVec3 v = o.light.vector;
     const bool finite = std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-    require(finite, kOp, std::string("the light's ") + (o.light.directional ? "direction" : "centre") + " is not finite");
-    if (o.light.directional) require(length(v) > 0.0, kOp, "the light's direction is zero");
+    require(finite, kSdfOp,
+            std::string("the light's ") + (o.light.directional ? "direction" : "centre") + " is not finite");
+    if (o.light.directional) require(length(v) > 0.0, kSdfOp, "the light's direction is zero");
 }
 
 void check_receivers(const Image& positions, const Image* normals, const SdfOptions& o)
 {
-    require(!positions.empty(), kOp, "the positions image is empty (0 pixels)");
-    require(positions.channels() == 3, kOp,
+    require(!positions.empty(), kSdfOp, "the positions image is empty (0 pixels)");
+    require(positions.channels() == 3, kSdfOp,
             "positions must have 3 channels (x, y, z), got " + std::to_string(positions.channels()));
-    if (o.normal_offset > 0.0f) require(normals != nullptr, kOp, "normal_offset > 0 needs the receivers' normals");
+    if (o.normal_offset > 0.0f) require(normals != nullptr, kSdfOp, "normal_offset > 0 needs the receivers' normals");
     if (!normals) return;
     require(normals->channels() == 3 && normals->width() == positions.width() &&
                 normals->height() == positions.height(),
-            kOp, "normals must have 3 channels and the positions' size (" + std::to_string(positions.width()) + "x" +
+            kSdfOp, "normals must have 3 channels and the positions' size (" + std::to_string(positions.width()) + "x" +
                      std::to_string(positions.height()) + ")");
 }
 
@@ -58,18 +60,19 @@ void check_output(const Image& positions, const Image& out)
 {
     require((out.channels() == 1 || out.channels() == 2) && out.width() == positions.width() &&
                 out.height() == positions.height(),
-            kOp, "the output must have 1 or 2 channels and the receivers' size (" + std::to_string(positions.width()) +
-                     "x" + std::to_string(positions.height()) + ")");
+            kSdfOp,
+            "the output must have 1 or 2 channels and the receivers' size (" + std::to_string(positions.width()) + "x" +
+                std::to_string(positions.height()) + ")");
 }
 
 void check_grid(const DistanceGrid& grid)
 {
-    require(!grid.empty(), kOp, "the distance grid is empty; construct it with its size, origin and voxel size");
+    require(!grid.empty(), kSdfOp, "the distance grid is empty; construct it with its size, origin and voxel size");
     const float* d = grid.data();
     for (std::size_t i = 0; i < grid.size(); ++i) {
         if (std::isfinite(d[i])) continue;
         const std::size_t row = std::size_t(grid.nx()) * grid.ny();
-        throw Error(ErrorCategory::InvalidData, kOp,
+        throw Error(ErrorCategory::InvalidData, kSdfOp,
                     "the distance grid's node (" + std::to_string(i % grid.nx()) + ", " +
                         std::to_string(i / grid.nx() % grid.ny()) + ", " + std::to_string(i / row) + ") is " +
                         std::to_string(d[i]) + "; distances must be finite");
@@ -109,8 +112,8 @@ SdfParams base_params(const Image& positions, const Image& out, const SdfOptions
 void report_bad_receivers(const std::vector<int>& bad_rows, const Image& positions, const Image* normals)
 {
     if (std::find(bad_rows.begin(), bad_rows.end(), 1) == bad_rows.end()) return;
-    require_finite(positions, kOp, "the receivers' positions");
-    if (normals) require_finite(*normals, kOp, "the receivers' normals");
+    require_finite(positions, kSdfOp, "the receivers' positions");
+    if (normals) require_finite(*normals, kSdfOp, "the receivers' normals");
 }
 
 template <class Launch>

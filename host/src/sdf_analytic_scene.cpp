@@ -12,7 +12,7 @@
 namespace penumbra {
 namespace {
 
-const char* const kOp = "AnalyticScene";
+const char* const kAnalyticSceneOp = "AnalyticScene";
 
 double dot(SdfVec3 a, SdfVec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 SdfVec3 minus(SdfVec3 a, SdfVec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
@@ -28,13 +28,13 @@ std::string field_of(int i, const char* field) { return "primitives[" + std::to_
 
 void require_positive(double v, int i, const char* field)
 {
-    require(std::isfinite(v) && v > 0.0, kOp,
+    require(std::isfinite(v) && v > 0.0, kAnalyticSceneOp,
             field_of(i, field) + ": must be finite and > 0 (got " + std::to_string(v) + ")");
 }
 
 void require_finite(SdfVec3 v, int i, const char* field)
 {
-    require(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z), kOp, field_of(i, field) + ": must be finite");
+    require(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z), kAnalyticSceneOp, field_of(i, field) + ": must be finite");
 }
 
 // The kernel turns a point into the box's frame by three dot products with
@@ -49,7 +49,7 @@ void require_orthonormal(const SdfBox& box, int i)
     constexpr double kTolerance = 1e-5;
     for (int a = 0; a < 3; ++a)
         for (int b = a; b < 3; ++b)
-            require(std::fabs(dot(axes[a], axes[b]) - (a == b ? 1.0 : 0.0)) <= kTolerance, kOp,
+            require(std::fabs(dot(axes[a], axes[b]) - (a == b ? 1.0 : 0.0)) <= kTolerance, kAnalyticSceneOp,
                     field_of(i, "axis_x, axis_y, axis_z") +
                         ": must be orthonormal (unit length, pairwise perpendicular, within 1e-5)");
 }

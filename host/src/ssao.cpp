@@ -16,7 +16,7 @@
 namespace penumbra {
 namespace {
 
-const std::string kOp = "ssao";
+const std::string kSsaoOp = "ssao";
 
 // The pattern of each size, built once per process (its brute-force volumes
 // take tens of milliseconds, a frame's worth).
@@ -53,16 +53,16 @@ int rule_of(SsaoUnusable u)
     case SsaoUnusable::Half: return PN_SSAO_HALF;
     case SsaoUnusable::Renormalise: return PN_SSAO_RENORMALISE;
     }
-    throw Error(ErrorCategory::InvalidArgument, kOp, "unusable", "not an SsaoUnusable value");
+    throw Error(ErrorCategory::InvalidArgument, kSsaoOp, "unusable", "not an SsaoUnusable value");
 }
 
 void check_options(const SsaoOptions& o, double fov_degrees)
 {
-    check(kSsaoRadiusRange, o.radius, kOp);
-    check(kSsaoPairsRange, o.pairs, kOp);
-    check(kSsaoMaxScreenRadiusRange, o.max_screen_radius, kOp);
-    check(kSsaoFalloffRange, o.falloff, kOp);
-    check(kSsaoFovRange, fov_degrees, kOp);
+    check(kSsaoRadiusRange, o.radius, kSsaoOp);
+    check(kSsaoPairsRange, o.pairs, kSsaoOp);
+    check(kSsaoMaxScreenRadiusRange, o.max_screen_radius, kSsaoOp);
+    check(kSsaoFalloffRange, o.falloff, kSsaoOp);
+    check(kSsaoFovRange, fov_degrees, kSsaoOp);
 }
 
 SsaoParams params_for(const SsaoOptions& o, double fov_degrees, const Image& depth, const Image& out,
@@ -92,7 +92,7 @@ void report(const std::vector<int>& bad_rows, const Image& depth)
         for (int x = 0; x < depth.width(); ++x) {
             const float z = depth.at(0, x, y);
             if (std::isfinite(z) && z >= 0.0f) continue;
-            throw Error(ErrorCategory::InvalidData, kOp, "view_depth",
+            throw Error(ErrorCategory::InvalidData, kSsaoOp, "view_depth",
                         "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") of the view depth is " +
                             std::to_string(z) +
                             "; depths must be finite and >= 0 (the distance along the view axis, 0 where no "
@@ -108,11 +108,11 @@ void ssao_obscurance(Context& context, const Image& view_depth, double fov_degre
                      Image& out)
 {
     check_options(options, fov_degrees);
-    require(!view_depth.empty() && view_depth.channels() == 1, kOp, "view_depth",
+    require(!view_depth.empty() && view_depth.channels() == 1, kSsaoOp, "view_depth",
             "the view depth must have 1 channel and at least one pixel");
     require(out.width() == view_depth.width() && out.height() == view_depth.height() && out.channels() == 1 &&
                 out.plane(0) != view_depth.plane(0),
-            kOp, "out", "the output must be another 1-channel image of the view depth's size");
+            kSsaoOp, "out", "the output must be another 1-channel image of the view depth's size");
     const SsaoPattern& pattern = cached_pattern(options.pairs);
     const SsaoParams p = params_for(options, fov_degrees, view_depth, out, pattern);
     std::vector<int> bad_rows(std::size_t(view_depth.height()), 0);

@@ -15,7 +15,7 @@
 namespace penumbra::reference {
 namespace {
 
-const char* const kOp = "render_cascades";
+const char* const kRenderCascadesOp = "render_cascades";
 
 const DirectionalLight& directional_light(const Scene& scene, int light, const char* op)
 {
@@ -39,7 +39,7 @@ std::array<double, 2> seen_depths(const Receivers& r)
                 lo = std::min(lo, double(r.view_depth.at(0, x, y)));
                 hi = std::max(hi, double(r.view_depth.at(0, x, y)));
             }
-    require(hi > 0, kOp, "receivers", "the view sees no surface; give the shadowed range (near, far)");
+    require(hi > 0, kRenderCascadesOp, "receivers", "the view sees no surface; give the shadowed range (near, far)");
     return {std::max(lo * 0.99, 1e-3), std::max(hi * 1.01, lo * 1.02)};
 }
 
@@ -160,10 +160,11 @@ std::vector<double> split_depths(double near, double far, int count, double lamb
 
 CascadeShadows render_cascades(const Scene& scene, int light, const Receivers& receivers, const CascadeSetup& setup)
 {
-    validate_scene(scene, kOp);
-    const Basis basis = light_basis(directional_light(scene, light, kOp));
-    require(setup.map_size >= 8 && setup.map_size <= 8192, kOp, "map_size", "each cascade's side must be in [8, 8192]");
-    require(!receivers.mask.empty(), kOp, "receivers", "the receivers are empty");
+    validate_scene(scene, kRenderCascadesOp);
+    const Basis basis = light_basis(directional_light(scene, light, kRenderCascadesOp));
+    require(setup.map_size >= 8 && setup.map_size <= 8192, kRenderCascadesOp, "map_size",
+            "each cascade's side must be in [8, 8192]");
+    require(!receivers.mask.empty(), kRenderCascadesOp, "receivers", "the receivers are empty");
     const std::array<double, 2> range =
         setup.near == 0 && setup.far == 0 ? seen_depths(receivers) : std::array<double, 2>{setup.near, setup.far};
     const std::vector<double> splits = split_depths(range[0], range[1], setup.count, setup.lambda);

@@ -25,7 +25,7 @@
 namespace penumbra::reference {
 namespace {
 
-constexpr const char* kOperation = "render_deep_shadow_map";
+constexpr const char* kRenderDeepMapOp = "render_deep_shadow_map";
 constexpr int kBandRows = 16;
 constexpr std::size_t kBandSamples = std::size_t(1) << 21;
 
@@ -142,18 +142,18 @@ struct Resolved {
 
 Resolved checked(const DeepMapOptions& o)
 {
-    require(o.size >= 1 && o.size <= 16384, kOperation, "size",
+    require(o.size >= 1 && o.size <= 16384, kRenderDeepMapOp, "size",
             "must be in [1, 16384] (got " + std::to_string(o.size) + ")");
-    require(o.samples >= 1 && o.samples <= 4096, kOperation, "samples",
+    require(o.samples >= 1 && o.samples <= 4096, kRenderDeepMapOp, "samples",
             "must be in [1, 4096] (got " + std::to_string(o.samples) + ")");
-    require(o.filter == DeepMapFilter::Box || o.filter == DeepMapFilter::Gaussian, kOperation, "filter",
+    require(o.filter == DeepMapFilter::Box || o.filter == DeepMapFilter::Gaussian, kRenderDeepMapOp, "filter",
             "must be DeepMapFilter::Box or Gaussian");
     const float tolerance = o.tolerance.value_or(dsm_default_tolerance(o.samples));
-    require(tolerance >= 0 && tolerance <= 1, kOperation, "tolerance",
+    require(tolerance >= 0 && tolerance <= 1, kRenderDeepMapOp, "tolerance",
             "must be in [0, 1] (got " + std::to_string(tolerance) + ")");
     // A zero tolerance still needs a finite volume step.
     const double volume_error = o.volume_error.value_or(std::max(double(tolerance) / 4, 1e-5));
-    require(volume_error >= 1e-6 && volume_error <= 1, kOperation, "volume_error",
+    require(volume_error >= 1e-6 && volume_error <= 1, kRenderDeepMapOp, "volume_error",
             "must be in [1e-6, 1] (got " + std::to_string(volume_error) + ")");
     return {o, tolerance, volume_error};
 }
@@ -170,7 +170,7 @@ DeepShadowMap render_deep_shadow_map(const Scene& scene, const DeepMapOptions& o
 {
     const Resolved r = checked(options);
     const DeepMapOptions& o = r.options;
-    validate_scene(scene, kOperation);
+    validate_scene(scene, kRenderDeepMapOp);
     const Setup setup{scene, PreparedScene(scene), LightProjection(scene), o, r.tolerance, r.volume_error,
                       Strata(o.samples),
                       o.filter == DeepMapFilter::Box ? 0 : int(std::ceil(kDeepGaussianRadius - 0.5))};

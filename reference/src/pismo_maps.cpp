@@ -16,7 +16,7 @@
 namespace penumbra::reference {
 namespace {
 
-constexpr std::string_view kOperation = "pismo_maps";
+constexpr std::string_view kPismoMapsOp = "pismo_maps";
 constexpr double kFovMargin = 1.02;
 // A ray crosses at most this many surfaces before the render gives up on a
 // pixel: a bound on work for rays along thousands of strands, far above any
@@ -76,11 +76,11 @@ double nearest_caster_depth(const Scene& scene, const Basis& light)
 
 void check(const LayeredMapOptions& o)
 {
-    require(o.size >= 1 && o.size <= 8192, kOperation, "map-size",
+    require(o.size >= 1 && o.size <= 8192, kPismoMapsOp, "map-size",
             "the map size must be in [1, 8192], not " + std::to_string(o.size));
-    require(o.max_layers >= 1 && o.max_layers <= 64, kOperation, "layers",
+    require(o.max_layers >= 1 && o.max_layers <= 64, kPismoMapsOp, "layers",
             "the layers per pixel must be in [1, 64], not " + std::to_string(o.max_layers));
-    require(o.prune >= 0 && o.prune <= 0.1, kOperation, "prune", "the pruning distance must be in [0, 0.1] (a fraction of the depth)");
+    require(o.prune >= 0 && o.prune <= 0.1, kPismoMapsOp, "prune", "the pruning distance must be in [0, 0.1] (a fraction of the depth)");
 }
 
 // The kept depths along one ray (unit direction: t is the distance), and the
@@ -109,12 +109,12 @@ double widest_slope(Vec3 vertex, const Basis& frame, const std::vector<Vec3>& he
     double widest = 0;
     for (const Vec3& p : held) {
         const Vec3 local = frame.to_local(p - vertex);
-        require(local.z > 0, kOperation, "light",
+        require(local.z > 0, kPismoMapsOp, "light",
                 "a point the maps must hold lies behind a light vertex; move the light camera's near plane out "
                 "or the light away from the scene");
         widest = std::max({widest, std::fabs(local.x) / local.z, std::fabs(local.y) / local.z});
     }
-    require(widest > 0, kOperation, "light", "the maps have nothing to hold: no receiver and no caster");
+    require(widest > 0, kPismoMapsOp, "light", "the maps have nothing to hold: no receiver and no caster");
     return widest;
 }
 
@@ -244,7 +244,7 @@ LayeredDepthMap render_layered_depth_map(const PreparedScene& casters, const Map
 PismoMaps render_pismo_maps(const Scene& scene, int level, const LayeredMapOptions& options,
                             std::span<const Vec3> region)
 {
-    validate_scene(scene, kOperation);
+    validate_scene(scene, kPismoMapsOp);
     check(options);
     PismoMaps out{light_mesh(scene.light, level), pismo_fixation_point(scene), {}, {}};
     const std::vector<int> surface_of = pismo_caster_surfaces(scene);
