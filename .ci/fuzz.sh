@@ -30,20 +30,41 @@ echo "fuzz job: built at $SECONDS s"
 rm -rf "$build/corpus" "$build/artifacts"
 bash tests/fuzz/make_corpus.sh "$build" "$build/corpus/seeds" "$cli"
 echo "fuzz job: corpus made at $SECONDS s"
-mkdir -p "$build/artifacts"
-status=0
+rm -rf "$build/logs"
+mkdir -p "$build/artifacts" "$build/logs"
 # A fixed seed and a fixed number of runs per target (about FUZZ_SECONDS on an
 # idle 2-core machine: EXR ~1,500 runs/s, deep EXR ~700, scene JSON ~9,000, grids ~4,500,
 # ambient JSON ~9,000), so
 # that CI's verdict does not depend on the machine's speed: the same inputs are
 # tried every time; twice FUZZ_SECONDS caps a slow machine. Longer campaigns:
 # tests/fuzz/campaign.sh.
-for target in exr:exr_reader_fuzz:1500 deep:deep_exr_reader_fuzz:700 scene:scene_json_fuzz:9000 grid:sdf_grid_fuzz:4500 ambient:ambient_json_fuzz:9000; do
-  IFS=: read -r seeds fuzzer rate <<<"$target"
+# fuzz_target SEEDS FUZZER RATE: one target's runs, its output in logs/, its
+# exit status in logs/FUZZER.status.
+fuzz_target() {
+  local seeds=$1 fuzzer=$2 rate=$3
   mkdir -p "$build/corpus/$seeds"
-  echo "--- $fuzzer, $((rate * seconds)) runs, seed 1"
+  local code=0
   "$build/tests/fuzz/$fuzzer" -seed=1 -runs=$((rate * seconds)) -max_total_time=$((2 * seconds)) -timeout=10 -rss_limit_mb=2048 \
     -malloc_limit_mb=1024 -print_final_stats=1 -artifact_prefix="$build/artifacts/$fuzzer-" \
-    "$build/corpus/$seeds" "$build/corpus/seeds/$seeds" 2>&1 | tail -n 40 || status=1
+    "$build/corpus/$seeds" "$build/corpus/seeds/$seeds" >"$build/logs/$fuzzer.log" 2>&1 || code=$?
+  echo "$code" >"$build/logs/$fuzzer.status"
+}
+# Two targets at a time, one a core: each is a single process, and run one
+# after another they left the second core idle for the stage's last minute.
+fuzzers=()
+for target in exr:exr_reader_fuzz:1500 deep:deep_exr_reader_fuzz:700 scene:scene_json_fuzz:9000 grid:sdf_grid_fuzz:4500 ambient:ambient_json_fuzz:9000; do
+  IFS=: read -r seeds fuzzer rate <<<"$target"
+  while (($(jobs -rp | wc -l) >= 2)); do wait -n || true; done
+  fuzz_target "$seeds" "$fuzzer" "$rate" &
+  fuzzers+=("$fuzzer:$rate")
+done
+wait
+status=0
+for entry in "${fuzzers[@]}"; do
+  IFS=: read -r fuzzer rate <<<"$entry"
+  echo "--- $fuzzer, $((rate * seconds)) runs, seed 1"
+  tail -n 40 "$build/logs/$fuzzer.log"
+  code=$(cat "$build/logs/$fuzzer.status" 2>/dev/null || echo missing)
+  [[ $code == 0 ]] || { echo "$fuzzer: exit status $code"; status=1; }
 done
 exit "$status"
