@@ -32,8 +32,9 @@ struct BilateralBuffers {
     Output<int> flags;
 };
 
-// Rows per band of the OpenCL table builds: each band's work-item scans its
-// rows' columns, and the bands are joined after (opencl_moments.cpp,
+// Rows per band of the OpenCL table builds: the bands are built in parallel,
+// each from zero column sums, and every band's column totals are then added
+// to the bands below (kernels/moment_table.h; opencl_moments.cpp,
 // opencl_moment_table.cpp).
 inline constexpr int kTableBandHeight = 32;
 
