@@ -19,8 +19,15 @@ is printed beside it. Needs the repetitions themselves (no
 """
 import collections
 import json
+import os
 import statistics
 import sys
+
+# penumbra_bench's time units as bench/ratios.py reads them. Its load() keys a
+# case by its first name component and drops the unkeyed second one (here the
+# operation: depth_convention/table/convention:...), so the names are split here.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ratios import to_ms  # noqa: E402
 
 CONVENTIONS = ("normalized", "linear", "perspective", "reversed")
 
@@ -37,8 +44,7 @@ def repetitions(path):
         fields = dict(p.split(":", 1) for p in parts[2:] if ":" in p)
         if "convention" not in fields:
             continue
-        scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b.get("time_unit", "ns")]
-        times[(parts[0], parts[1])][fields["convention"]].append(b["real_time"] * scale)
+        times[(parts[0], parts[1])][fields["convention"]].append(to_ms(b["real_time"], b.get("time_unit", "ns")))
     return times
 
 
