@@ -166,6 +166,7 @@ PN_FN void pn_flag_any(global int* flags, int i, int m) { if (m) flags[i] = 1; }
 PN_FN int pn_finite(float v) { return v - v == 0.0f; }
 
 #define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); ++x)
+#define PN_STRIP_AFTER(x) ((x) + 1)
 PN_FN float pn_scan_add(float v) { return v; }
 PN_FN float pn_last(float v) { return v; }
 PN_FN uint pn_uscan_add(uint v) { return v; }

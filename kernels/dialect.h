@@ -119,6 +119,8 @@
  *
  * Row scans (for kernels that walk a row strip by strip)
  *   PN_FOR_STRIPS(x, begin, end)    for (x = begin; x < end; x += lane count)
+ *   PN_STRIP_AFTER(x)               the first column of the strip after the one at x
+ *                                   (x + lane count): to read a row one strip ahead
  *   pn_scan_add(v)                  inclusive prefix sum across the lanes of a strip
  *   pn_last(v)                      every lane gets the value of the last lane
  *   pn_last_value(v)                the last lane's value as a uniform float

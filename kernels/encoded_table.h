@@ -52,12 +52,14 @@ PN_FN void encoded_band_##variant(PN_GLOBAL const float* depth, PN_GLOBAL T* tab
         pn_sum_##variant row_sum[4];                                                                               \
         for (int k = 0; k < p.channels; ++k) row_sum[k] = (T)0;                                                    \
         pn_mask bad = sat_depth_outside(0.0f);                                                                     \
+        DepthStrip next = depth_strip(depth, p.depth, 0, y, p.convention);                                         \
         PN_FOR_STRIPS(x, 0, p.depth.width)                                                                         \
         {                                                                                                          \
-            const pn_float z = pn_load(depth, p.depth, x, y);                                                      \
-            bad = pn_or(bad, depth_outside(z, p.convention));                                                      \
+            const DepthStrip here = next;                                                                          \
+            next = depth_strip(depth, p.depth, PN_STRIP_AFTER(x), y, p.convention);                                \
+            bad = pn_or(bad, depth_outside(here.stored, p.convention));                                            \
             pn_float v[4];                                                                                         \
-            encode_texel(pn_clamp(depth_to_unclamped(z, p.convention), 0.0f, 1.0f), p, v);                         \
+            encode_texel(pn_clamp(here.unclamped, 0.0f, 1.0f), p, v);                                              \
             for (int k = 0; k < p.channels; ++k) {                                                                 \
                 PN_GLOBAL T* column = PN_PLANE(columns, p.columns, k);                                             \
                 const pn_sum_##variant row_prefix =                                                                \

@@ -67,11 +67,13 @@ PN_FN void sat_rows_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
         pn_float row_sum[4];
         for (int k = 0; k < moments; ++k) row_sum[k] = carry[k * p.depth.height + y];
         pn_mask bad = sat_depth_outside(0.0f);
+        DepthStrip next = depth_strip(depth, p.depth, x0, y, p.convention);
         PN_FOR_STRIPS(x, x0, x1)
         {
-            const pn_float stored = pn_load(depth, p.depth, x, y);
-            bad = pn_or(bad, depth_outside(stored, p.convention));
-            const pn_float z = depth_checked_to_normalized(stored, p.convention);
+            const DepthStrip here = next;
+            next = depth_strip(depth, p.depth, PN_STRIP_AFTER(x), y, p.convention);
+            bad = pn_or(bad, depth_outside(here.stored, p.convention));
+            const pn_float z = depth_unclamped_to_normalized(here.unclamped, p.convention);
             pn_float m = z;
             for (int k = 0; k < moments; ++k) {
                 PN_GLOBAL float* column = PN_PLANE(columns, p.columns, k);
@@ -174,11 +176,13 @@ PN_FN void sat_rows_exact(PN_GLOBAL const float* depth, PN_GLOBAL uint* table,
         pn_uint row_sum[PN_MAX_PLANES];
         for (int k = 0; k < planes; ++k) row_sum[k] = carry[k * p.depth.height + y];
         pn_mask bad = sat_depth_outside(0.0f);
+        DepthStrip next = depth_strip(depth, p.depth, x0, y, p.convention);
         PN_FOR_STRIPS(x, x0, x1)
         {
-            const pn_float stored = pn_load(depth, p.depth, x, y);
-            bad = pn_or(bad, depth_outside(stored, p.convention));
-            const pn_float z = depth_to_unclamped(stored, p.convention);  /* both clamp it next */
+            const DepthStrip here = next;
+            next = depth_strip(depth, p.depth, PN_STRIP_AFTER(x), y, p.convention);
+            bad = pn_or(bad, depth_outside(here.stored, p.convention));
+            const pn_float z = here.unclamped;  /* both clamp it next */
             pn_double v[4];
             sat_texel_values(z, p, moments, v);
             pn_uint q[PN_MAX_PLANES];

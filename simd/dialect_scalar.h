@@ -169,6 +169,7 @@ PN_FN void pn_flag_any(int* flags, int i, bool m)
 PN_FN bool pn_finite(float v) { return v - v == 0.0f; }
 
 #define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); ++x)
+#define PN_STRIP_AFTER(x) ((x) + 1)
 PN_FN float pn_scan_add(float v) { return v; }
 PN_FN float pn_last(float v) { return v; }
 PN_FN std::uint32_t pn_uscan_add(std::uint32_t v) { return v; }

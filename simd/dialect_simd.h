@@ -660,6 +660,7 @@ PN_FN void pn_flag_any(int* flags, int i, pn_mask m)
 PN_FN pn_mask pn_finite(pn_float v) { return (v - v) == 0.0f; }
 
 #define PN_FOR_STRIPS(x, begin, end) for (int x = (begin); x < (end); x += kLanes)
+#define PN_STRIP_AFTER(x) ((x) + kLanes)
 PN_FN pn_float pn_scan_add(pn_float v) { return pn_scan_add_from<float>(v); }
 PN_FN pn_float pn_last(pn_float v) { return pn_broadcast_last<float>(v); }
 PN_FN pn_uint pn_uscan_add(pn_uint v) { return pn_scan_add_from<std::uint32_t>(v); }
