@@ -65,11 +65,14 @@ PN_FN pn_float depth_to_unclamped(pn_float z, DepthConversion c)
 }
 
 /* A strip of a stored map and its conversion (depth_to_unclamped), for the
- * table builds, which walk each row strip by strip and read one strip ahead
- * (depth_strip at PN_STRIP_AFTER(x)): the next strip's conversion then runs
- * beside the current strip's sums instead of heading their chain, which a
- * rational convention's division lengthens (measured: docs/integration.md,
- * "Depth conventions"). A strip past the row's end reads 0, as pn_load does. */
+ * exact and the 16-bit encoded table builds, which walk each row strip by
+ * strip and read one strip ahead (depth_strip at PN_STRIP_AFTER(x)): the next
+ * strip's conversion then runs beside the current strip's long chain (limbs,
+ * scans, column sums) instead of heading it, where a rational convention's
+ * division lengthened it. The float build's chain is short: there reading
+ * ahead slowed the normalised path and gained nothing (docs/integration.md,
+ * "Reading one strip ahead"). A strip past the row's end reads 0, as pn_load
+ * does. */
 typedef struct {
     pn_float stored;
     pn_float unclamped;
@@ -83,20 +86,13 @@ PN_FN DepthStrip depth_strip(PN_GLOBAL const float* depth, pn_dims d, int x, int
     return s;
 }
 
-/* depth_to_unclamped's result (a DepthStrip's) clamped into [0, 1]; the
- * normalised convention's value passes as stored, as it always has. */
-PN_FN pn_float depth_unclamped_to_normalized(pn_float unclamped, DepthConversion c)
-{
-    if (c.kind == PN_DEPTH_NORMALIZED) return unclamped;
-    return pn_clamp(unclamped, 0.0f, 1.0f);
-}
-
 /* The conversion clamped into [0, 1], for stored values the caller checks or
  * flags (a map checked up front, a table build's flag): equal to
  * depth_to_normalized on every value in the range, one clamp fewer. */
 PN_FN pn_float depth_checked_to_normalized(pn_float stored, DepthConversion c)
 {
-    return depth_unclamped_to_normalized(depth_to_unclamped(stored, c), c);
+    if (c.kind == PN_DEPTH_NORMALIZED) return stored;
+    return pn_clamp(depth_to_unclamped(stored, c), 0.0f, 1.0f);
 }
 
 /* Rows [y0, y1) of a stored, checked map (dims d) converted by

@@ -67,13 +67,11 @@ PN_FN void sat_rows_float(PN_GLOBAL const float* depth, PN_GLOBAL float* table,
         pn_float row_sum[4];
         for (int k = 0; k < moments; ++k) row_sum[k] = carry[k * p.depth.height + y];
         pn_mask bad = sat_depth_outside(0.0f);
-        DepthStrip next = depth_strip(depth, p.depth, x0, y, p.convention);
         PN_FOR_STRIPS(x, x0, x1)
         {
-            const DepthStrip here = next;
-            next = depth_strip(depth, p.depth, PN_STRIP_AFTER(x), y, p.convention);
-            bad = pn_or(bad, depth_outside(here.stored, p.convention));
-            const pn_float z = depth_unclamped_to_normalized(here.unclamped, p.convention);
+            const pn_float stored = pn_load(depth, p.depth, x, y);
+            bad = pn_or(bad, depth_outside(stored, p.convention));
+            const pn_float z = depth_checked_to_normalized(stored, p.convention);
             pn_float m = z;
             for (int k = 0; k < moments; ++k) {
                 PN_GLOBAL float* column = PN_PLANE(columns, p.columns, k);

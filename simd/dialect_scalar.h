@@ -11,7 +11,7 @@ using pn_uint = std::uint32_t;
 using pn_mask = bool;
 using uint = std::uint32_t;
 
-#define PN_FN static inline
+#define PN_FN static inline __attribute__((always_inline))
 #define PN_KERNEL static inline
 #define PN_GLOBAL
 #define PN_LANES 1
