@@ -71,8 +71,8 @@ PN_FN pn_float depth_to_unclamped(pn_float z, DepthConversion c)
  * scans, column sums) instead of heading it, where a rational convention's
  * division lengthened it. The float build's chain is short: there reading
  * ahead slowed the normalised path and gained nothing (docs/integration.md,
- * "Reading one strip ahead"). A strip past the row's end reads 0, as pn_load
- * does. */
+ * "Reading one strip ahead"). The strip read after a block's last is not
+ * used; past the row's end it reads 0, as pn_load does. */
 typedef struct {
     pn_float stored;
     pn_float unclamped;
