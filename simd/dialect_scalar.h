@@ -11,6 +11,10 @@ using pn_uint = std::uint32_t;
 using pn_mask = bool;
 using uint = std::uint32_t;
 
+// Every description function is inlined, as on SIMD: the builds' literal value
+// and limb counts (sat_block_exact) specialise only a loop that is inlined, and
+// GCC stopped inlining the exact build's once it read one strip ahead (1.55x
+// slower; docs/integration.md, "Reading one strip ahead").
 #define PN_FN static inline __attribute__((always_inline))
 #define PN_KERNEL static inline
 #define PN_GLOBAL
