@@ -249,13 +249,11 @@ using pn_batch_of = xsimd::batch<T, PN_ARCH>;
 template <class T>
 PN_FN pn_batch_of<T> pn_load_strip(const T* plane, pn_dims d, int x, int y)
 {
-    const T* row = plane + std::size_t(y) * std::size_t(d.pitch);
+    const T* p = plane + std::size_t(y) * std::size_t(d.pitch) + std::size_t(x);
     const int valid = d.width - x;
-    if (valid >= kLanes) return pn_batch_of<T>::load_unaligned(row + x);
-    // A strip at or past the row's end (a row read one strip ahead,
-    // PN_STRIP_AFTER) reads zeros without forming a pointer past the row.
+    if (valid >= kLanes) return pn_batch_of<T>::load_unaligned(p);
     alignas(64) T tail[kLanes] = {};
-    if (valid > 0) std::memcpy(tail, row + x, sizeof(T) * std::size_t(valid));
+    std::memcpy(tail, p, sizeof(T) * std::size_t(valid > 0 ? valid : 0));
     return pn_batch_of<T>::load_aligned(tail);
 }
 
