@@ -53,7 +53,11 @@ def main(argv):
         print(__doc__.strip().splitlines()[0], file=sys.stderr)
         print("usage: convention_ratios.py RUN.json", file=sys.stderr)
         return 2
-    times = repetitions(argv[1])
+    try:
+        times = repetitions(argv[1])
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        print(f"convention_ratios.py: cannot read {argv[1]} as a Google Benchmark JSON run: {e}", file=sys.stderr)
+        return 2
     if not times:
         print(f"convention_ratios.py: {argv[1]} has no depth_convention repetitions "
               "(run without --benchmark_report_aggregates_only)", file=sys.stderr)
